@@ -1,0 +1,34 @@
+// The piece shared by two triangles: a convex polygon of at most 6 vertices.
+#pragma once
+#include "point.hpp"
+
+namespace dlmfsi {
+
+struct Piece {
+  static constexpr int kMaxVertices = 6;
+  Point v[kMaxVertices];
+  int n = 0;           // number of vertices, counter-clockwise; 0 when the interiors do not meet
+  double area() const;  // shoelace formula, >= 0 up to round-off
+};
+
+// Intersection of the closed counter-clockwise triangles a and b (both of positive orientation).
+//
+// Every decision is an exact orient2d sign on the input coordinates, so two fluid triangles that share an
+// edge split a solid triangle consistently, and the pieces tile it:
+//  - the interiors meet iff no edge line of a or b has the other triangle on its closed outer side
+//    (separating-axis theorem for convex polygons); otherwise n = 0 (touching at a vertex or along an
+//    edge is empty);
+//  - the vertices are the vertices of a inside closed b, the vertices of b inside closed a (one copy of a
+//    vertex shared by both), and the proper crossings of an edge of a with an edge of b;
+//  - a crossing point is computed from the two segments in a canonical order (each segment's endpoints
+//    sorted lexicographically, then the two segments), so every triangle that has those two segments as
+//    edges gets bit-identical coordinates.
+// Degenerate cases handled by name: shared edge (either orientation), vertex on an edge, vertex on a
+// vertex, collinear overlapping edges, one triangle inside the other, identical triangles.
+Piece clip(const Point a[3], const Point b[3]);
+
+// The point where segments [p, q] and [r, s] cross (they must cross properly), canonical in the order of
+// the four arguments and of the two segments.
+Point crossing(Point p, Point q, Point r, Point s);
+
+}  // namespace dlmfsi

@@ -1,0 +1,398 @@
+#include "coupling.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "errors.hpp"
+#include "fluid_search.hpp"
+#include "predicates.hpp"
+#include "rules.hpp"
+
+namespace dlmfsi {
+
+std::string CouplingReport::summary() const {
+  char s[512];
+  std::snprintf(s, sizeof s,
+                "dlmfsi: %ld solid triangles (%ld affine, %ld straight, %ld curved), %ld pieces, %ld points, "
+                "degrees fluid %d multiplier %d rule %d/%d, image area %.6g, outside %.3g, %.3f s",
+                solid_triangles, affine, straight, curved, pieces, points, fluid_degree, solid_degree, rule_degree,
+                curved_rule_degree, image_area, outside_area, seconds);
+  return s;
+}
+
+namespace {
+
+struct Range {
+  int first, last;
+};
+
+// Everything one thread needs to assemble a run of solid triangles.
+class Worker {
+ public:
+  Worker(const Mesh& fluid, const FluidGrid& grid, const Basis& fluid_space, const Mesh& solid,
+         const Basis& multiplier, const SolidMap& map, const CouplingOptions& opt, const CouplingReport& degrees)
+      : fluid_(fluid), fluid_space_(fluid_space), solid_(solid), multiplier_(multiplier), map_(map), opt_(opt),
+        search_(grid), nf_(fluid_space.local_dofs()), ns_(multiplier.local_dofs()),
+        ncf_(fluid_space.components()), ncs_(multiplier.components()) {
+    report_.fluid_degree = degrees.fluid_degree;
+    report_.solid_degree = degrees.solid_degree;
+    report_.rule_degree = degrees.rule_degree;
+    report_.curved_rule_degree = degrees.curved_rule_degree;
+    const size_t np = opt.fluid_components.size();
+    for (size_t p = 0; p < np; ++p) {
+      Range f, s;
+      fluid_space.component_dofs(opt.fluid_components[p], f.first, f.last);
+      multiplier.component_dofs(opt.solid_components[p], s.first, s.last);
+      frange_.push_back(f);
+      srange_.push_back(s);
+      for (int j = f.first; j < f.last; ++j) fluid_used_.push_back(j);
+      for (int i = s.first; i < s.last; ++i) solid_used_.push_back(i);
+    }
+    for (auto* v : {&fluid_used_, &solid_used_}) {
+      std::sort(v->begin(), v->end());
+      v->erase(std::unique(v->begin(), v->end()), v->end());
+    }
+    fvals_.resize(static_cast<size_t>(nf_) * ncf_ * 3);
+    svals_.resize(static_cast<size_t>(ns_) * ncs_ * 3);
+    fdofs_.resize(nf_);
+    sdofs_.resize(ns_);
+    fcol_.resize(nf_);
+  }
+
+  void run(int first, int last) {
+    for (int k = first; k < last; ++k) solid_triangle(k);
+  }
+
+  std::vector<Triplet> triplets;
+  CouplingReport report_;
+
+ private:
+  void solid_triangle(int ks) {
+    MappedTriangle mt;
+    mt.prepare(solid_, map_, ks);
+    multiplier_.dofs(ks, sdofs_.data());
+    columns_.clear();
+    block_.clear();
+    ++report_.solid_triangles;
+    (mt.affine ? report_.affine : (mt.straight ? report_.straight : report_.curved))++;
+    const double image_area = 0.5 * area2(mt.image[0], mt.image[1], mt.image[2]);
+    double outside = 0;
+    if (opt_.method == CouplingOptions::Method::Exact)
+      outside = exact(mt);
+    else
+      outside = quadrature(mt);
+    report_.image_area += image_area;
+    outside = std::max(outside, 0.0);
+    report_.outside_area += outside;
+    if (outside > report_.worst_outside) {
+      report_.worst_outside = outside;
+      report_.worst_triangle = ks;
+    }
+    for (int i : solid_used_)
+      for (size_t c = 0; c < columns_.size(); ++c) triplets.push_back({sdofs_[i], columns_[c], block_[c * ns_ + i]});
+  }
+
+  // Clips the (straight) image, or its straight sub-triangles, against the fluid; returns the area outside.
+  double exact(const MappedTriangle& mt) {
+    double outside = 0;
+    const int degree = mt.affine ? report_.rule_degree : report_.curved_rule_degree;
+    auto clip_image = [&](const Point img[3]) {
+      const int o = orient2d(img[0], img[1], img[2]);
+      if (o <= 0) throw Error("the map folds solid triangle " + std::to_string(mt.k) + " (a sub-triangle's image is " +
+                              (o == 0 ? "flat)" : "clockwise)"));
+      double covered = 0;
+      search_.for_each_piece(img, hint_, [&](int kf, const Piece& piece) {
+        covered += piece.area();
+        integrate_piece(mt, kf, piece, degree);
+      });
+      outside += 0.5 * area2(img[0], img[1], img[2]) - covered;
+    };
+    if (mt.straight) {
+      clip_image(mt.image);
+      return outside;
+    }
+    // Curved edges: a 2^L x 2^L split of the reference triangle, corners mapped by the true map.
+    const int level = opt_.subdivide >= 0 ? opt_.subdivide : 2;
+    const int n = 1 << level;
+    std::vector<Point> grid((n + 1) * (n + 2) / 2);
+    auto at = [&](int i, int j) -> Point& { return grid[j * (n + 1) - j * (j - 1) / 2 + i]; };
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i + j <= n; ++i) {
+        at(i, j) = map_.evaluate(mt.k, {static_cast<double>(i) / n, static_cast<double>(j) / n}).x;
+        if (!std::isfinite(at(i, j).x) || !std::isfinite(at(i, j).y))
+          throw Error("the map is NaN or Inf inside solid triangle " + std::to_string(mt.k));
+      }
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i + j < n; ++i) {
+        const Point up[3] = {at(i, j), at(i + 1, j), at(i, j + 1)};
+        clip_image(up);
+        if (i + j + 1 < n) {
+          const Point down[3] = {at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)};
+          clip_image(down);
+        }
+      }
+    return outside;
+  }
+
+  void integrate_piece(const MappedTriangle& mt, int kf, const Piece& piece, int degree) {
+    ++report_.pieces;
+    Point kc[3];
+    fluid_.corners(kf, kc);
+    fluid_columns(kf);
+    const auto& rule = triangle_rule(degree);
+    for (int t = 1; t + 1 < piece.n; ++t) {
+      const Point tri[3] = {piece.v[0], piece.v[t], piece.v[t + 1]};
+      const double area = 0.5 * area2(tri[0], tri[1], tri[2]);
+      for (const RulePoint& q : rule) {
+        const Point y = from_reference(tri, q.xi);
+        MapValue mv;
+        const Point xi = mt.pull_back(map_, y, mv);
+        const double det = mt.affine ? mt.affine_det : det2(mv.jac);
+        if (!(det > 0)) throw Error("the map folds solid triangle " + std::to_string(mt.k));
+        fluid_space_.evaluate(kf, to_reference(kc, y), fvals_.data());
+        multiplier_.evaluate(mt.k, xi, svals_.data());
+        accumulate(area * q.weight / det, mv.jac);
+      }
+    }
+  }
+
+  // Composite rule on sub-triangles of the reference triangle; returns the (fluid-space) area outside.
+  double quadrature(const MappedTriangle& mt) {
+    struct Sub {
+      Point ref[3], img[3];
+      int depth;
+    };
+    const int max_depth =
+        std::min(12, std::max(0, static_cast<int>(std::ceil(std::log(1 / std::max(opt_.tol, 1e-300)) / std::log(4.0)))));
+    const double solid_jacobian = area2(mt.solid[0], mt.solid[1], mt.solid[2]);  // ds = this * dxi
+    const auto& rule = triangle_rule(mt.affine ? report_.rule_degree : report_.curved_rule_degree);
+    double outside = 0;
+    std::vector<Sub> stack{{{{0, 0}, {1, 0}, {0, 1}}, {mt.image[0], mt.image[1], mt.image[2]}, 0}};
+    auto image_of = [&](Point xi) { return mt.affine ? from_reference(mt.image, xi) : map_.evaluate(mt.k, xi).x; };
+    while (!stack.empty()) {
+      Sub s = stack.back();
+      stack.pop_back();
+      if (s.depth < max_depth && !one_fluid_triangle(s.img)) {
+        const Point m[3] = {0.5 * (s.ref[0] + s.ref[1]), 0.5 * (s.ref[1] + s.ref[2]), 0.5 * (s.ref[2] + s.ref[0])};
+        const Point mi[3] = {image_of(m[0]), image_of(m[1]), image_of(m[2])};
+        stack.push_back({{s.ref[0], m[0], m[2]}, {s.img[0], mi[0], mi[2]}, s.depth + 1});
+        stack.push_back({{m[0], s.ref[1], m[1]}, {mi[0], s.img[1], mi[1]}, s.depth + 1});
+        stack.push_back({{m[2], m[1], s.ref[2]}, {mi[2], mi[1], s.img[2]}, s.depth + 1});
+        stack.push_back({{m[1], m[2], m[0]}, {mi[1], mi[2], mi[0]}, s.depth + 1});
+        continue;
+      }
+      ++report_.pieces;
+      const double ref_area = 0.5 * area2(s.ref[0], s.ref[1], s.ref[2]);
+      for (const RulePoint& q : rule) {
+        const Point xi = from_reference(s.ref, q.xi);
+        MapValue mv = mt.affine ? mt.affine_value : map_.evaluate(mt.k, xi);
+        if (mt.affine) mv.x = from_reference(mt.image, xi);
+        const double ds = q.weight * ref_area * solid_jacobian;
+        const int kf = search_.locate(mv.x, hint_);
+        if (kf < 0) {
+          outside += ds * std::fabs(det2(mv.jac));
+          continue;
+        }
+        hint_ = kf;
+        Point kc[3];
+        fluid_.corners(kf, kc);
+        fluid_columns(kf);
+        fluid_space_.evaluate(kf, to_reference(kc, mv.x), fvals_.data());
+        multiplier_.evaluate(mt.k, xi, svals_.data());
+        accumulate(ds, mv.jac);
+      }
+    }
+    return outside;
+  }
+
+  // Do the three points lie in one closed fluid triangle?
+  bool one_fluid_triangle(const Point img[3]) {
+    const int k = search_.locate(img[0], hint_);
+    if (k < 0) return false;
+    hint_ = k;
+    for (int i = 1; i < 3; ++i)
+      for (int e = 0; e < 3; ++e)
+        if (orient2d(fluid_.vertex(k, e), fluid_.vertex(k, (e + 1) % 3), img[i]) < 0) return false;
+    return true;
+  }
+
+  // Maps the used local dofs of fluid triangle kf to columns of the block, adding new ones.
+  void fluid_columns(int kf) {
+    fluid_space_.dofs(kf, fdofs_.data());
+    for (int j : fluid_used_) {
+      const int g = fdofs_[j];
+      auto it = std::find(columns_.begin(), columns_.end(), g);
+      if (it == columns_.end()) {
+        columns_.push_back(g);
+        block_.resize(block_.size() + ns_, 0.0);
+        fcol_[j] = static_cast<int>(columns_.size()) - 1;
+      } else {
+        fcol_[j] = static_cast<int>(it - columns_.begin());
+      }
+    }
+  }
+
+  // block += ds * [c2 psi_i . phi_j + c1 grad psi_i : grad(phi_j o X)] at one point; fvals_, svals_ filled.
+  void accumulate(double ds, const double jac[2][2]) {
+    ++report_.points;
+    auto f = [&](int j, int c) { return &fvals_[(static_cast<size_t>(j) * ncf_ + c) * 3]; };
+    auto s = [&](int i, int c) { return &svals_[(static_cast<size_t>(i) * ncs_ + c) * 3]; };
+    const double c1 = opt_.c1 * ds, c2 = opt_.c2 * ds;
+    const bool chain = opt_.gradient == CouplingOptions::Gradient::Chain;
+    for (size_t p = 0; p < frange_.size(); ++p) {
+      const int fc = opt_.fluid_components[p], sc = opt_.solid_components[p];
+      for (int j = frange_[p].first; j < frange_[p].last; ++j) {
+        const double* phi = f(j, fc);
+        // grad_s (phi o X)_b = sum_a d_a phi * dX_a/ds_b
+        const double g0 = phi[1] * jac[0][0] + phi[2] * jac[1][0];
+        const double g1 = phi[1] * jac[0][1] + phi[2] * jac[1][1];
+        double* col = &block_[static_cast<size_t>(fcol_[j]) * ns_];
+        for (int i = srange_[p].first; i < srange_[p].last; ++i) {
+          const double* psi = s(i, sc);
+          double v = c2 * psi[0] * phi[0];
+          if (chain) v += c1 * (psi[1] * g0 + psi[2] * g1);
+          col[i] += v;
+        }
+      }
+    }
+    if (chain || opt_.c1 == 0) return;
+    // Listing: sum_{a,b} d_b psi^{s_a} sum_c dX_a/ds_c d_b phi^{f_c} (pair index = vector component).
+    for (int a = 0; a < 2; ++a)
+      for (int c = 0; c < 2; ++c) {
+        const double w = c1 * jac[a][c];
+        const int sc = opt_.solid_components[a], fc = opt_.fluid_components[c];
+        for (int j = frange_[c].first; j < frange_[c].last; ++j) {
+          const double* phi = f(j, fc);
+          double* col = &block_[static_cast<size_t>(fcol_[j]) * ns_];
+          for (int i = srange_[a].first; i < srange_[a].last; ++i) {
+            const double* psi = s(i, sc);
+            col[i] += w * (psi[1] * phi[1] + psi[2] * phi[2]);
+          }
+        }
+      }
+  }
+
+  const Mesh& fluid_;
+  const Basis& fluid_space_;
+  const Mesh& solid_;
+  const Basis& multiplier_;
+  const SolidMap& map_;
+  const CouplingOptions& opt_;
+  FluidSearch search_;
+  int nf_, ns_, ncf_, ncs_;
+  int hint_ = 0;
+  std::vector<Range> frange_, srange_;
+  std::vector<int> fluid_used_, solid_used_;
+  std::vector<double> fvals_, svals_, block_;  // block_: column-major, ns_ rows per column
+  std::vector<int> fdofs_, sdofs_, fcol_, columns_;
+};
+
+void check_options(const Basis& fluid_space, const Basis& multiplier, const CouplingOptions& opt) {
+  const auto& f = opt.fluid_components;
+  const auto& s = opt.solid_components;
+  if (f.size() != s.size())
+    throw Error("fluid and solid component lists differ in length (" + std::to_string(f.size()) + " and " +
+                std::to_string(s.size()) + ")");
+  if (f.empty()) throw Error("no components to couple");
+  for (int c : f)
+    if (c < 0 || c >= fluid_space.components())
+      throw Error("fluid component " + std::to_string(c) + " out of range (the fluid space has " +
+                  std::to_string(fluid_space.components()) + ")");
+  for (int c : s)
+    if (c < 0 || c >= multiplier.components())
+      throw Error("solid component " + std::to_string(c) + " out of range (the multiplier space has " +
+                  std::to_string(multiplier.components()) + ")");
+  if (opt.gradient == CouplingOptions::Gradient::Listing && f.size() != 2)
+    throw Error("gradient=\"listing\" needs exactly two component pairs (a 2D vector field)");
+  if (!std::isfinite(opt.c1) || !std::isfinite(opt.c2)) throw Error("c1 and c2 must be finite");
+  if (opt.qforder > 60) throw Error("qforder above 60");
+  if (opt.method == CouplingOptions::Method::Quadrature && !(opt.tol > 0 && opt.tol < 1))
+    throw Error("tol must lie in (0, 1)");
+  if (opt.subdivide > 8) throw Error("subdivide above 8");
+}
+
+}  // namespace
+
+CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const Mesh& solid, const Basis& multiplier,
+                            const SolidMap& map, const CouplingOptions& opt, CouplingReport* report) {
+  const auto start = std::chrono::steady_clock::now();
+  check_options(fluid_space, multiplier, opt);
+  if (static_cast<int>(fluid.neighbours.size()) != fluid.size()) throw Error("fluid mesh adjacency not built");
+  if (fluid.size() == 0) throw Error("empty fluid mesh");
+  const int first = std::max(0, opt.first_solid);
+  const int last = opt.last_solid < 0 ? solid.size() : std::min(solid.size(), opt.last_solid);
+
+  CouplingReport total;
+  total.fluid_degree = polynomial_degree(fluid_space);
+  total.solid_degree = polynomial_degree(multiplier);
+  // Exact for the product of the two bases (affine maps); 10 when an element is not polynomial.
+  const int product = (total.fluid_degree < 0 || total.solid_degree < 0)
+                          ? 10
+                          : std::max(0, total.fluid_degree + total.solid_degree - (opt.c2 == 0 ? 2 : 0));
+  total.rule_degree = product;
+  total.curved_rule_degree = opt.qforder >= 0 ? opt.qforder : std::min(60, product + 4);
+  if (opt.method == CouplingOptions::Method::Quadrature && opt.qforder >= 0) total.rule_degree = opt.qforder;
+
+  FluidGrid grid(fluid);
+  const int threads = std::max(1, std::min(opt.threads, 64));
+  std::vector<Worker> workers;
+  workers.reserve(threads);
+  for (int t = 0; t < threads; ++t) workers.emplace_back(fluid, grid, fluid_space, solid, multiplier, map, opt, total);
+  // Contiguous shares in solid order, so that the sums come out in the same order for any thread count.
+  auto share = [&](int t) { return first + static_cast<int>((static_cast<long long>(last - first) * t) / threads); };
+  if (threads == 1) {
+    workers[0].run(first, last);
+  } else {
+    std::vector<std::thread> pool;
+    std::vector<std::exception_ptr> errors(threads);
+    for (int t = 0; t < threads; ++t)
+      pool.emplace_back([&, t] {
+        try {
+          workers[t].run(share(t), share(t + 1));
+        } catch (...) {
+          errors[t] = std::current_exception();
+        }
+      });
+    for (auto& th : pool) th.join();
+    for (auto& e : errors)
+      if (e) std::rethrow_exception(e);
+  }
+
+  std::vector<std::vector<Triplet>> parts;
+  for (auto& w : workers) {
+    const CouplingReport& r = w.report_;
+    total.solid_triangles += r.solid_triangles;
+    total.pieces += r.pieces;
+    total.points += r.points;
+    total.affine += r.affine;
+    total.straight += r.straight;
+    total.curved += r.curved;
+    total.image_area += r.image_area;
+    total.outside_area += r.outside_area;
+    if (r.worst_outside > total.worst_outside) {
+      total.worst_outside = r.worst_outside;
+      total.worst_triangle = r.worst_triangle;
+    }
+    parts.push_back(std::move(w.triplets));
+  }
+  if (!opt.drop_outside && total.outside_area > opt.outside_tol * total.image_area) {
+    char msg[400];
+    std::snprintf(msg, sizeof msg,
+                  "the mapped solid leaves the fluid mesh: area %.6g outside of %.6g (relative %.3g > %.3g); "
+                  "worst is solid triangle %d with %.6g outside. Pass outside=\"drop\" to drop that part.",
+                  total.outside_area, total.image_area, total.outside_area / total.image_area, opt.outside_tol,
+                  total.worst_triangle, total.worst_outside);
+    throw Error(msg);
+  }
+  CsrMatrix m = compress(multiplier.dof_count(), fluid_space.dof_count(), parts);
+  total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (report) *report = total;
+  return m;
+}
+
+}  // namespace dlmfsi

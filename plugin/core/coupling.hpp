@@ -1,0 +1,57 @@
+// Assembly of the fluid-solid coupling matrix of the distributed-Lagrange-multiplier method.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "basis.hpp"
+#include "map.hpp"
+#include "mesh.hpp"
+#include "sparse.hpp"
+
+namespace dlmfsi {
+
+struct CouplingOptions {
+  double c1 = 1, c2 = 1;
+  // Fluid component fluid_components[p] pairs with multiplier component solid_components[p].
+  std::vector<int> fluid_components{0}, solid_components{0};
+  enum class Method { Exact, Quadrature } method = Method::Exact;
+  // Chain: grad_s(u o X) = (grad_x u)(X) grad_s X, the derivative of the composed function.
+  // Listing: the printed listings' reversed product Grad(X,Y) * Grad(u,v) (needs exactly two pairs).
+  enum class Gradient { Chain, Listing } gradient = Gradient::Chain;
+  int qforder = -1;    // degree of the rule on pieces of non-affine images and on quadrature leaves; -1: auto
+  double tol = 1e-3;   // quadrature: leaves that straddle a fluid edge are split down to tol * triangle area
+  int subdivide = -1;  // curved images: split each solid triangle into 4^subdivide straight ones; -1: auto (2)
+  bool drop_outside = false;    // allow the mapped solid to leave the fluid mesh, dropping that part
+  double outside_tol = 1e-10;   // relative to the mapped solid area, before it is an error
+  int first_solid = 0, last_solid = -1;  // assemble the solid triangles [first, last) only (-1: to the end)
+  int threads = 1;
+};
+
+struct CouplingReport {
+  long solid_triangles = 0, pieces = 0, points = 0, affine = 0, straight = 0, curved = 0;
+  double image_area = 0, outside_area = 0;  // of the mapped solid, and the part outside the fluid mesh
+  int worst_triangle = -1;                  // the solid triangle with most area outside
+  double worst_outside = 0;
+  int fluid_degree = 0, solid_degree = 0, rule_degree = 0, curved_rule_degree = 0;
+  double seconds = 0;
+  std::string summary() const;
+};
+
+// B_ij = int_{solid} c1 grad_s psi_i : grad_s (phi_j o X) + c2 psi_i . (phi_j o X) ds,
+// psi_i the multiplier basis (rows: multiplier dofs), phi_j the fluid basis (columns: fluid dofs),
+// summed over the paired components.
+//
+// Exact method: each mapped solid triangle X(T) is clipped against the fluid triangles it meets; on each
+// piece the integral is taken in fluid coordinates,
+//   int_T f(s) ds = int_{X(T)} f(X^-1(y)) |det grad X(X^-1(y))|^-1 dy,
+// with a rule exact for the product's degree when X is affine on T (exact to round-off), and with a rule
+// of degree qforder and Newton pull-back otherwise. Images with curved edges are replaced by 4^subdivide
+// straight sub-triangles (the pull-back still uses the true map).
+// Quadrature method: a composite rule on each solid triangle, refined where the images of a
+// sub-triangle's corners do not share one fluid triangle, down to tol of its area; the true map at every point.
+// Errors (Error): bad options or components, non-finite/inverted/flat map, a mapped solid outside the
+// fluid mesh by more than outside_tol (unless drop_outside).
+CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const Mesh& solid, const Basis& multiplier,
+                            const SolidMap& map, const CouplingOptions& options, CouplingReport* report = nullptr);
+
+}  // namespace dlmfsi

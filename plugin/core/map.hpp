@@ -1,0 +1,61 @@
+// The map X that places the solid: values, derivatives, shape of each mapped triangle, pull-back.
+#pragma once
+#include <vector>
+
+#include "basis.hpp"
+#include "mesh.hpp"
+
+namespace dlmfsi {
+
+struct MapValue {
+  Point x;             // X(s)
+  double jac[2][2];    // jac[a][b] = dX_a / ds_b, derivatives in the solid's reference coordinates s
+};
+
+class SolidMap {
+ public:
+  virtual ~SolidMap() = default;
+  // X at reference point xi of solid triangle k. Must be safe to call from several threads at once.
+  virtual MapValue evaluate(int k, Point xi) const = 0;
+};
+
+// X = (sum_i x_i phi_i^cx, sum_i y_i phi_i^cy): components of finite element functions on the solid mesh
+// (two scalar functions, or two components of one vector function).
+class FieldMap : public SolidMap {
+ public:
+  FieldMap(const Basis& space_x, const double* coef_x, int comp_x, const Basis& space_y, const double* coef_y, int comp_y);
+  MapValue evaluate(int k, Point xi) const override;
+
+ private:
+  struct Part {
+    const Basis* space;
+    const double* coef;
+    int comp, first, last;
+  };
+  void add(const Part& p, int k, Point xi, int a, MapValue& v) const;
+  Part part_[2];
+};
+
+// One solid triangle k under the map: the images of its corners and how its image may be handled.
+struct MappedTriangle {
+  int k = -1;
+  Point solid[3];    // corners in the reference configuration
+  Point image[3];    // X at the corners
+  bool affine = false;    // X agrees with the affine interpolant of the corner images (to round-off)
+  bool straight = false;  // the image's edges are straight segments (e.g. P1b: the bubble vanishes on edges)
+  MapValue affine_value;  // for affine triangles: X at the first corner and the constant jacobian
+  double affine_det = 0;  // det of that jacobian (> 0)
+
+  // Checks the corners (finite, image counter-clockwise, not degenerate: exact predicates) and classifies
+  // the map by sampling it at interior and edge points; throws Error naming triangle k on bad input.
+  void prepare(const Mesh& solid_mesh, const SolidMap& map, int k);
+
+  // The reference point xi with X(xi) = y and the map there; for non-affine triangles Newton's method
+  // from the affine guess, stopping at |dxi| < 1e-14. Throws Error if it fails to converge or the jacobian
+  // determinant is not positive (a folded map).
+  Point pull_back(const SolidMap& map, Point y, MapValue& value) const;
+};
+
+inline double det2(const double j[2][2]) { return j[0][0] * j[1][1] - j[0][1] * j[1][0]; }
+
+}  // namespace dlmfsi

@@ -1,0 +1,89 @@
+#include "rules.hpp"
+
+#include <cmath>
+#include <mutex>
+
+#include "errors.hpp"
+
+namespace dlmfsi {
+
+void gauss_legendre(int n, std::vector<double>& nodes, std::vector<double>& weights) {
+  nodes.assign(n, 0);
+  weights.assign(n, 0);
+  const double pi = std::acos(-1.0);
+  for (int i = 0; i < n; ++i) {
+    // Newton on the Legendre polynomial P_n from the Chebyshev-like first guess.
+    double x = std::cos(pi * (i + 0.75) / (n + 0.5)), dp = 1;
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1, p1 = x;
+      for (int k = 2; k <= n; ++k) {
+        const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      if (n == 1) p0 = 1;
+      const double pn = n == 0 ? 1 : p1;
+      dp = n * (x * pn - p0) / (x * x - 1);
+      const double dx = pn / dp;
+      x -= dx;
+      if (std::fabs(dx) < 1e-16) break;
+    }
+    // Recompute the derivative at the converged node for the weight 2 / ((1 - x^2) P_n'(x)^2).
+    double p0 = 1, p1 = x;
+    for (int k = 2; k <= n; ++k) {
+      const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+      p0 = p1;
+      p1 = p2;
+    }
+    if (n == 1) p0 = 1;
+    dp = n * (x * p1 - p0) / (x * x - 1);
+    nodes[i] = 0.5 * (1 - x);
+    weights[i] = 1.0 / ((1 - x * x) * dp * dp);  // half of the [-1,1] weight
+  }
+}
+
+namespace {
+
+std::vector<RulePoint> make_rule(int degree) {
+  std::vector<RulePoint> r;
+  if (degree <= 1) {
+    r.push_back({{1.0 / 3, 1.0 / 3}, 1.0});
+  } else if (degree == 2) {
+    r.push_back({{1.0 / 6, 1.0 / 6}, 1.0 / 3});
+    r.push_back({{2.0 / 3, 1.0 / 6}, 1.0 / 3});
+    r.push_back({{1.0 / 6, 2.0 / 3}, 1.0 / 3});
+  } else if (degree == 5) {
+    const double s = std::sqrt(15.0);
+    const double a1 = (6 - s) / 21, b1 = (9 + 2 * s) / 21, w1 = (155 - s) / 1200;
+    const double a2 = (6 + s) / 21, b2 = (9 - 2 * s) / 21, w2 = (155 + s) / 1200;
+    r.push_back({{1.0 / 3, 1.0 / 3}, 9.0 / 40});
+    for (auto [a, b, w] : {std::tuple{a1, b1, w1}, std::tuple{a2, b2, w2}}) {
+      r.push_back({{a, a}, w});
+      r.push_back({{b, a}, w});
+      r.push_back({{a, b}, w});
+    }
+  } else {
+    std::vector<double> xu, wu, xv, wv;
+    gauss_legendre((degree + 3) / 2, xu, wu);
+    gauss_legendre((degree + 2) / 2, xv, wv);
+    for (size_t i = 0; i < xu.size(); ++i)
+      for (size_t j = 0; j < xv.size(); ++j)
+        r.push_back({{xu[i], (1 - xu[i]) * xv[j]}, 2 * wu[i] * wv[j] * (1 - xu[i])});
+  }
+  return r;
+}
+
+}  // namespace
+
+const std::vector<RulePoint>& triangle_rule(int degree) {
+  constexpr int kMax = 60;
+  if (degree < 0 || degree > kMax) throw Error("quadrature degree " + std::to_string(degree) + " outside [0, 60]");
+  static std::vector<RulePoint> rules[kMax + 1];
+  static std::once_flag once;
+  std::call_once(once, [] {
+    for (int d = 0; d <= kMax; ++d) rules[d] = make_rule(d);
+  });
+  return rules[degree];
+}
+
+}  // namespace dlmfsi

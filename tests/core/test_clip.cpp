@@ -1,0 +1,177 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "clip.hpp"
+#include "fluid_search.hpp"
+#include "predicates.hpp"
+#include "support.hpp"
+
+using namespace dlmfsi;
+
+namespace {
+
+// Independent reference: Sutherland-Hodgman in long double, for generic (non-degenerate) pairs.
+long double reference_area(const Point a[3], const Point b[3]) {
+  struct P { long double x, y; };
+  std::vector<P> poly = {{a[0].x, a[0].y}, {a[1].x, a[1].y}, {a[2].x, a[2].y}};
+  for (int j = 0; j < 3 && !poly.empty(); ++j) {
+    P p{b[j].x, b[j].y}, q{b[(j + 1) % 3].x, b[(j + 1) % 3].y};
+    auto side = [&](P r) { return (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x); };
+    std::vector<P> out;
+    for (size_t i = 0; i < poly.size(); ++i) {
+      P r = poly[i], s = poly[(i + 1) % poly.size()];
+      long double sr = side(r), ss = side(s);
+      if (sr >= 0) out.push_back(r);
+      if ((sr > 0 && ss < 0) || (sr < 0 && ss > 0)) {
+        long double t = sr / (sr - ss);
+        out.push_back({r.x + t * (s.x - r.x), r.y + t * (s.y - r.y)});
+      }
+    }
+    poly = out;
+  }
+  long double area = 0;
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const P& r = poly[i];
+    const P& s = poly[(i + 1) % poly.size()];
+    area += r.x * s.y - r.y * s.x;
+  }
+  return area / 2;
+}
+
+void ccw(Point t[3]) {
+  if (orient2d(t[0], t[1], t[2]) < 0) std::swap(t[1], t[2]);
+}
+
+double tri_area(const Point t[3]) { return 0.5 * area2(t[0], t[1], t[2]); }
+
+}  // namespace
+
+TEST(Clip, RandomPairsMatchIndependentClipper) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int it = 0; it < 100000; ++it) {
+    Point a[3], b[3];
+    for (auto& p : a) p = {u(rng), u(rng)};
+    for (auto& p : b) p = {u(rng), u(rng)};
+    if (orient2d(a[0], a[1], a[2]) == 0 || orient2d(b[0], b[1], b[2]) == 0) continue;
+    ccw(a);
+    ccw(b);
+    const double got = clip(a, b).area();
+    const long double want = reference_area(a, b);
+    ASSERT_NEAR(got, static_cast<double>(want), 1e-13) << "pair " << it;
+  }
+}
+
+TEST(Clip, PiecesAreConvexCounterClockwise) {
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int it = 0; it < 20000; ++it) {
+    Point a[3], b[3];
+    for (auto& p : a) p = {u(rng), u(rng)};
+    for (auto& p : b) p = {u(rng), u(rng)};
+    if (orient2d(a[0], a[1], a[2]) == 0 || orient2d(b[0], b[1], b[2]) == 0) continue;
+    ccw(a);
+    ccw(b);
+    Piece p = clip(a, b);
+    for (int i = 0; i < p.n; ++i)
+      ASSERT_GE(orient2d(p.v[i], p.v[(i + 1) % p.n], p.v[(i + 2) % p.n]), 0);
+  }
+}
+
+// --- a catalogue of degeneracies, each named after its configuration ---
+
+TEST(ClipDegenerate, IdenticalTriangles) {
+  Point a[3] = {{0, 0}, {1, 0}, {0, 1}};
+  EXPECT_DOUBLE_EQ(clip(a, a).area(), 0.5);
+  EXPECT_EQ(clip(a, a).n, 3);
+}
+
+TEST(ClipDegenerate, SharedEdgeOppositeSidesIsEmpty) {
+  Point a[3] = {{0, 0}, {1, 0}, {0, 1}}, b[3] = {{1, 0}, {1, 1}, {0, 1}};
+  EXPECT_EQ(clip(a, b).n, 0);
+  EXPECT_EQ(clip(b, a).n, 0);
+}
+
+TEST(ClipDegenerate, SharedEdgeSameSide) {
+  Point a[3] = {{0, 0}, {1, 0}, {0, 1}}, b[3] = {{0, 0}, {1, 0}, {0.2, 0.3}};
+  EXPECT_NEAR(clip(a, b).area(), 0.15, 1e-16);
+}
+
+TEST(ClipDegenerate, TouchingAtOneVertexIsEmpty) {
+  Point a[3] = {{0, 0}, {1, 0}, {0, 1}}, b[3] = {{1, 0}, {2, 0}, {2, 1}};
+  EXPECT_EQ(clip(a, b).n, 0);
+}
+
+TEST(ClipDegenerate, VertexOnEdge) {
+  // b's apex lies on a's hypotenuse; b is inside a.
+  Point a[3] = {{0, 0}, {1, 0}, {0, 1}}, b[3] = {{0.1, 0.1}, {0.6, 0.1}, {0.5, 0.5}};
+  EXPECT_NEAR(clip(a, b).area(), tri_area(b), 1e-16);
+  EXPECT_EQ(clip(a, b).n, 3);
+}
+
+TEST(ClipDegenerate, CollinearOverlappingEdges) {
+  Point a[3] = {{0, 0}, {2, 0}, {0, 2}}, b[3] = {{1, 0}, {3, 0}, {1, 1}};
+  // overlap: triangle (1,0), (2,0), (1,1) -> area 0.5
+  EXPECT_NEAR(clip(a, b).area(), 0.5, 1e-16);
+}
+
+TEST(ClipDegenerate, ContainedTriangleSharingAVertex) {
+  Point a[3] = {{0, 0}, {4, 0}, {0, 4}}, b[3] = {{0, 0}, {1, 0}, {0, 1}};
+  EXPECT_NEAR(clip(a, b).area(), 0.5, 1e-16);
+  EXPECT_NEAR(clip(b, a).area(), 0.5, 1e-16);
+}
+
+TEST(ClipDegenerate, HexagonFromStarOfDavid) {
+  const double pi = std::acos(-1.0);
+  Point a[3], b[3];
+  for (int i = 0; i < 3; ++i) {
+    a[i] = {std::cos(pi / 2 + 2 * pi * i / 3), std::sin(pi / 2 + 2 * pi * i / 3)};
+    b[i] = {-a[i].x, -a[i].y};
+  }
+  Piece p = clip(a, b);
+  EXPECT_EQ(p.n, 6);
+  // regular hexagon with circumradius 1/sqrt(3): area 3 sqrt(3)/2 * r^2 = sqrt(3)/2
+  EXPECT_NEAR(p.area(), std::sqrt(3.0) / 2, 1e-15);
+}
+
+TEST(ClipDegenerate, PerturbationOf1e15) {
+  Point a[3] = {{0, 0}, {1, 0}, {0, 1}};
+  Point b[3] = {{1 + 1e-15, 0}, {1, 1}, {1e-15, 1}};  // nearly sharing the hypotenuse, from the other side
+  const double area = clip(a, b).area();
+  EXPECT_GE(area, 0);
+  EXPECT_LT(area, 1e-14);
+}
+
+// The pieces of a solid triangle over a fluid mesh tile it; the mesh lines pass through its vertices and
+// along its edges (the fluid mesh "contains the solid boundary").
+TEST(ClipTiling, SolidEdgesOnFluidEdges) {
+  Mesh fluid = test::grid_mesh(8, 8, 0, 0, 1, 1);
+  FluidGrid grid(fluid);
+  FluidSearch search(grid);
+  const Point tris[][3] = {{{0.25, 0.25}, {0.75, 0.25}, {0.75, 0.75}},  // along fluid edges and a diagonal
+                           {{0.125, 0.125}, {0.625, 0.125}, {0.125, 0.625}},  // hypotenuse against the diagonals
+                           {{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}},              // on the domain boundary
+                           {{0.1, 0.0}, {0.9, 0.5}, {0.3, 1.0}}};             // vertices on the boundary
+  for (const auto& t : tris) {
+    double sum = 0;
+    int hint = 0;
+    search.for_each_piece(t, hint, [&](int, const Piece& p) { sum += p.area(); });
+    EXPECT_NEAR(sum, tri_area(t), 1e-15 * 8);
+  }
+}
+
+TEST(ClipTiling, FluidTrianglePiecesTileTheCoveredPart) {
+  // A solid mesh over a fluid triangle: the pieces inside the fluid triangle add up to its area.
+  Mesh solid = test::grid_mesh(7, 5, -0.05, -0.03, 1.2, 1.1, true);
+  Point f[3] = {{0.1, 0.2}, {0.9, 0.15}, {0.4, 0.95}};
+  double sum = 0;
+  for (int k = 0; k < solid.size(); ++k) {
+    Point s[3];
+    solid.corners(k, s);
+    sum += clip(s, f).area();
+  }
+  EXPECT_NEAR(sum, tri_area(f), 1e-15);
+}

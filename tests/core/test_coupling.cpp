@@ -1,0 +1,190 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "clip.hpp"
+#include "coupling.hpp"
+#include "errors.hpp"
+#include "rules.hpp"
+#include "support.hpp"
+
+using namespace dlmfsi;
+
+namespace {
+
+// lambda^T B u for nodal vectors.
+double form(const CsrMatrix& b, const std::vector<double>& lam, const std::vector<double>& u) {
+  double s = 0;
+  for (int i = 0; i < b.rows; ++i)
+    for (int e = b.start[i]; e < b.start[i + 1]; ++e) s += lam[i] * b.value[e] * u[b.column[e]];
+  return s;
+}
+
+struct Rotation {
+  double c, s, bx, by;
+  Point operator()(Point p) const { return {c * p.x - s * p.y + bx, s * p.x + c * p.y + by}; }
+};
+
+}  // namespace
+
+// Linear data on both sides, affine map: u o X is linear on each solid triangle, so a degree-2 rule on the
+// solid triangles (no clipping) is an independent exact reference.
+TEST(Coupling, LinearDataUnderRotationIsExact) {
+  Mesh fluid = test::grid_mesh(17, 13, -1, -1, 2, 2, true);
+  Mesh solid = test::grid_mesh(9, 7, -0.4, -0.3, 0.8, 0.6);
+  const double angle = 0.3;
+  Rotation r{std::cos(angle), std::sin(angle), 0.05, -0.02};
+  test::AffineMap map(solid, r.c, -r.s, r.s, r.c, r.bx, r.by);
+  test::P1 vf(fluid), vs(solid);
+  auto u = [](Point x) { return 1.5 + 2 * x.x - 0.7 * x.y; };
+  auto lam = [](Point s) { return -0.3 + s.x + 3 * s.y; };
+  std::vector<double> uh, lh;
+  for (Point p : fluid.vertices) uh.push_back(u(p));
+  for (Point p : solid.vertices) lh.push_back(lam(p));
+  for (double c1 : {0.0, 1.0}) {
+    CouplingOptions opt;
+    opt.c1 = c1;
+    opt.c2 = 10;
+    CouplingReport rep;
+    CsrMatrix b = assemble_coupling(fluid, vf, solid, vs, map, opt, &rep);
+    // reference: c2 int lam u(X) + c1 grad lam . grad(u o X) with grad(u o X) = A^T grad u
+    const double gu[2] = {2, -0.7};
+    const double gux = r.c * gu[0] + r.s * gu[1], guy = -r.s * gu[0] + r.c * gu[1];
+    double want = 0;
+    for (int k = 0; k < solid.size(); ++k) {
+      Point c[3];
+      solid.corners(k, c);
+      const double area = 0.5 * area2(c[0], c[1], c[2]);
+      for (const auto& q : triangle_rule(2)) {
+        Point s = from_reference(c, q.xi);
+        want += area * q.weight * (opt.c2 * lam(s) * u(r(s)) + c1 * (1 * gux + 3 * guy));
+      }
+    }
+    EXPECT_NEAR(form(b, lh, uh), want, 1e-12 * std::fabs(want));
+    EXPECT_LT(rep.outside_area, 1e-14 * rep.image_area);
+  }
+}
+
+TEST(Coupling, OnesGiveTheSolidArea) {
+  Mesh fluid = test::grid_mesh(10, 10, 0, 0, 1, 1);
+  Mesh solid = test::grid_mesh(4, 4, 0.2, 0.2, 0.5, 0.5);  // vertices on fluid vertices, edges on fluid edges
+  test::AffineMap id(solid, 1, 0, 0, 1, 0, 0);
+  test::P1 vf(fluid), vs(solid);
+  CouplingOptions opt;
+  opt.c1 = 0;
+  opt.c2 = 1;
+  CsrMatrix b = assemble_coupling(fluid, vf, solid, vs, id, opt);
+  std::vector<double> one_f(fluid.vertices.size(), 1), one_s(solid.vertices.size(), 1);
+  EXPECT_NEAR(form(b, one_s, one_f), 0.25, 1e-15);
+}
+
+TEST(Coupling, KinkedDataMatchesBruteForceSupermesh) {
+  // Random nodal values (kinks on fluid edges); reference by clipping every pair of triangles (all pairs,
+  // no search) and a degree-2 rule on each piece.
+  Mesh fluid = test::grid_mesh(6, 5, 0, 0, 1, 1, true);
+  Mesh solid = test::grid_mesh(3, 3, 0.25, 0.2, 0.45, 0.5);
+  test::AffineMap map(solid, std::cos(0.7), -std::sin(0.7), std::sin(0.7), std::cos(0.7), 0.3, -0.2);
+  test::P1 vf(fluid), vs(solid);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<double> uh(fluid.vertices.size()), lh(solid.vertices.size());
+  for (auto& v : uh) v = u(rng);
+  for (auto& v : lh) v = u(rng);
+  CouplingOptions opt;
+  opt.c1 = 0;
+  opt.c2 = 1;
+  CsrMatrix b = assemble_coupling(fluid, vf, solid, vs, map, opt);
+  double want = 0;
+  for (int ks = 0; ks < solid.size(); ++ks) {
+    Point sc[3], ic[3];
+    solid.corners(ks, sc);
+    for (int i = 0; i < 3; ++i) ic[i] = map.evaluate(ks, i == 0 ? Point{0, 0} : (i == 1 ? Point{1, 0} : Point{0, 1})).x;
+    for (int kf = 0; kf < fluid.size(); ++kf) {
+      Point fc[3];
+      fluid.corners(kf, fc);
+      Piece p = clip(ic, fc);
+      for (int t = 1; t + 1 < p.n; ++t) {
+        Point tri[3] = {p.v[0], p.v[t], p.v[t + 1]};
+        const double area = 0.5 * area2(tri[0], tri[1], tri[2]);
+        for (const auto& q : triangle_rule(2)) {
+          Point y = from_reference(tri, q.xi);
+          Point xf = to_reference(fc, y), xs = to_reference(ic, y);
+          const double uf = uh[fluid.triangles[kf][0]] * (1 - xf.x - xf.y) + uh[fluid.triangles[kf][1]] * xf.x +
+                            uh[fluid.triangles[kf][2]] * xf.y;
+          const double ls = lh[solid.triangles[ks][0]] * (1 - xs.x - xs.y) + lh[solid.triangles[ks][1]] * xs.x +
+                            lh[solid.triangles[ks][2]] * xs.y;
+          want += area * q.weight * uf * ls;  // det of a rotation is 1
+        }
+      }
+    }
+  }
+  EXPECT_NEAR(form(b, lh, uh), want, 1e-13 * std::fabs(want) + 1e-15);
+}
+
+TEST(CouplingErrors, OutsideTheFluidIsAnErrorUnlessDropped) {
+  Mesh fluid = test::grid_mesh(4, 4, 0, 0, 1, 1);
+  Mesh solid = test::grid_mesh(2, 2, 0.8, 0.4, 0.4, 0.2);
+  test::AffineMap id(solid, 1, 0, 0, 1, 0, 0);
+  test::P1 vf(fluid), vs(solid);
+  CouplingOptions opt;
+  EXPECT_THROW(assemble_coupling(fluid, vf, solid, vs, id, opt), Error);
+  opt.drop_outside = true;
+  CouplingReport rep;
+  assemble_coupling(fluid, vf, solid, vs, id, opt, &rep);
+  EXPECT_NEAR(rep.outside_area, 0.2 * 0.2, 1e-15);
+  EXPECT_NEAR(rep.image_area, 0.4 * 0.2, 1e-15);
+}
+
+TEST(CouplingErrors, ReflectionAndFlatMapsAreErrors) {
+  Mesh fluid = test::grid_mesh(4, 4, -1, -1, 2, 2);
+  Mesh solid = test::grid_mesh(2, 2, -0.2, -0.2, 0.4, 0.4);
+  test::P1 vf(fluid), vs(solid);
+  CouplingOptions opt;
+  test::AffineMap mirror(solid, -1, 0, 0, 1, 0, 0), flat(solid, 1, 1, 1, 1, 0, 0),
+      nan(solid, std::nan(""), 0, 0, 1, 0, 0);
+  EXPECT_THROW(assemble_coupling(fluid, vf, solid, vs, mirror, opt), Error);
+  EXPECT_THROW(assemble_coupling(fluid, vf, solid, vs, flat, opt), Error);
+  EXPECT_THROW(assemble_coupling(fluid, vf, solid, vs, nan, opt), Error);
+  opt.fluid_components = {0, 0};
+  test::AffineMap id(solid, 1, 0, 0, 1, 0, 0);
+  EXPECT_THROW(assemble_coupling(fluid, vf, solid, vs, id, opt), Error);  // lengths differ
+  opt.solid_components = {0, 1};
+  EXPECT_THROW(assemble_coupling(fluid, vf, solid, vs, id, opt), Error);  // component out of range
+}
+
+TEST(Coupling, ThreadsGiveTheSameMatrix) {
+  Mesh fluid = test::grid_mesh(20, 20, 0, 0, 1, 1, true);
+  Mesh solid = test::grid_mesh(15, 11, 0.2, 0.25, 0.5, 0.4);
+  test::AffineMap map(solid, std::cos(0.2), -std::sin(0.2), std::sin(0.2), std::cos(0.2), 0.05, 0);
+  test::P1 vf(fluid), vs(solid);
+  CouplingOptions opt;
+  CsrMatrix one = assemble_coupling(fluid, vf, solid, vs, map, opt);
+  opt.threads = 3;
+  CsrMatrix three = assemble_coupling(fluid, vf, solid, vs, map, opt);
+  EXPECT_EQ(one.column, three.column);
+  EXPECT_EQ(one.value, three.value);
+}
+
+TEST(Coupling, QuadratureMethodConvergesToTheExactValue) {
+  Mesh fluid = test::grid_mesh(12, 12, 0, 0, 1, 1, true);
+  Mesh solid = test::grid_mesh(3, 3, 0.3, 0.3, 0.4, 0.4);
+  test::AffineMap map(solid, std::cos(0.4), -std::sin(0.4), std::sin(0.4), std::cos(0.4), 0.1, -0.1);
+  test::P1 vf(fluid), vs(solid);
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<double> uh(fluid.vertices.size()), lh(solid.vertices.size());
+  for (auto& v : uh) v = u(rng);
+  for (auto& v : lh) v = u(rng);
+  CouplingOptions opt;
+  const double exact = form(assemble_coupling(fluid, vf, solid, vs, map, opt), lh, uh);
+  opt.method = CouplingOptions::Method::Quadrature;
+  double previous = 1e300;
+  for (double tol : {1e-2, 1e-4, 1e-6}) {
+    opt.tol = tol;
+    const double err = std::fabs(form(assemble_coupling(fluid, vf, solid, vs, map, opt), lh, uh) - exact);
+    EXPECT_LT(err, previous);
+    previous = err;
+  }
+  EXPECT_LT(previous, 1e-3 * std::fabs(exact));
+}

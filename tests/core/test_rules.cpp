@@ -1,0 +1,49 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "rules.hpp"
+
+using namespace dlmfsi;
+
+static double factorial(int n) { return n <= 1 ? 1.0 : n * factorial(n - 1); }
+
+// int_T x^a y^b = a! b! / (a + b + 2)! on the reference triangle (area 1/2).
+TEST(Rules, ExactForMonomialsUpToTheirDegree) {
+  for (int d = 0; d <= 30; ++d) {
+    const auto& rule = triangle_rule(d);
+    double wsum = 0;
+    for (const auto& q : rule) {
+      EXPECT_GT(q.weight, 0);
+      EXPECT_GE(q.xi.x, 0);
+      EXPECT_GE(q.xi.y, 0);
+      EXPECT_LE(q.xi.x + q.xi.y, 1 + 1e-15);
+      wsum += q.weight;
+    }
+    EXPECT_NEAR(wsum, 1, 1e-14);
+    for (int a = 0; a <= d; ++a)
+      for (int b = 0; a + b <= d; ++b) {
+        double s = 0;
+        for (const auto& q : rule) s += q.weight * std::pow(q.xi.x, a) * std::pow(q.xi.y, b);
+        const double exact = factorial(a) * factorial(b) / factorial(a + b + 2);
+        EXPECT_NEAR(0.5 * s, exact, 1e-14 * std::max(1.0, exact) + 1e-16) << "degree " << d << " x^" << a << " y^" << b;
+      }
+  }
+}
+
+TEST(Rules, NotExactBeyondTheirDegree) {
+  // A rule of degree d must miss some monomial of degree d + 2 (the test can fail).
+  for (int d : {1, 2, 5, 8}) {
+    const auto& rule = triangle_rule(d);
+    double worst = 0;
+    for (int a = 0; a <= d + 2; ++a) {
+      const int b = d + 2 - a;
+      double s = 0;
+      for (const auto& q : rule) s += q.weight * std::pow(q.xi.x, a) * std::pow(q.xi.y, b);
+      worst = std::max(worst, std::fabs(0.5 * s - factorial(a) * factorial(b) / factorial(a + b + 2)));
+    }
+    EXPECT_GT(worst, 1e-8) << d;
+  }
+}
+
+TEST(Rules, RejectsOutOfRangeDegrees) { EXPECT_THROW(triangle_rule(61), std::runtime_error); }
