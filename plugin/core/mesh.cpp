@@ -10,7 +10,7 @@
 
 namespace dlmfsi {
 
-void Mesh::build_adjacency() {
+void Mesh::check() const {
   for (size_t v = 0; v < vertices.size(); ++v)
     if (!std::isfinite(vertices[v].x) || !std::isfinite(vertices[v].y))
       throw Error("mesh vertex " + std::to_string(v) + " is not finite");
@@ -22,6 +22,11 @@ void Mesh::build_adjacency() {
     if (orient2d(vertex(k, 0), vertex(k, 1), vertex(k, 2)) <= 0)
       throw Error("mesh triangle " + std::to_string(k) + " is degenerate or clockwise");
   }
+}
+
+void Mesh::build_adjacency() {
+  check();
+  const int nt = size();
   // Sort the edges by their vertex pair; equal neighbours in the sorted list are the two sides of one edge.
   std::vector<std::tuple<int, int, int>> edges;  // (min vertex, max vertex, 3 * triangle + local edge)
   edges.reserve(3 * static_cast<size_t>(nt));

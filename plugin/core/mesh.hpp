@@ -19,8 +19,10 @@ struct Mesh {
     for (int i = 0; i < 3; ++i) out[i] = vertex(k, i);
   }
 
-  // Fills neighbours; throws Error for an edge shared by more than two triangles, a non-finite vertex,
-  // or a triangle that is not of positive orientation (checked with the exact predicate).
+  // Throws Error for a non-finite vertex, a bad vertex index, or a triangle that is not of positive
+  // orientation (checked with the exact predicate).
+  void check() const;
+  // check(), then fills neighbours; throws Error for an edge shared by more than two triangles.
   void build_adjacency();
 };
 

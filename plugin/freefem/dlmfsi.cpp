@@ -1,1 +1,225 @@
-// placeholder
+// The FreeFEM adapter: the script function dlmfsi(...) on top of the FreeFEM-free core.
+//
+//   matrix B = dlmfsi(Vf, Vs, [X, Y], c1=1, c2=10, fluid=[0,1], solid=[0,1]);  // rows Vs, columns Vf
+//
+// It converts meshes and spaces into the core's arrays and Basis evaluators (FreeFEM's own basis
+// functions, so any element works), calls dlmfsi::assemble_coupling, and turns every C++ exception into
+// a FreeFEM ExecError that a script can catch.
+#include "ff++.hpp"
+
+#include <cmath>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "coupling.hpp"
+#include "errors.hpp"
+
+namespace {
+
+using dlmfsi::Point;
+
+// A FreeFEM 2D finite element space as a dlmfsi::Basis.
+class SpaceBasis : public dlmfsi::Basis {
+ public:
+  explicit SpaceBasis(const FESpace& vh) : vh_(vh), nd_(vh[0].NbDoF()), nc_(vh.N) {}
+  int components() const override { return nc_; }
+  int dof_count() const override { return vh_.NbOfDF; }
+  int local_dofs() const override { return nd_; }
+  void component_dofs(int c, int& first, int& last) const override {
+    first = vh_.TFE[0]->begin_dfcomp[c];
+    last = vh_.TFE[0]->end_dfcomp[c];
+  }
+  void dofs(int k, int* global) const override {
+    const FElement K = vh_[k];
+    for (int df = 0; df < nd_; ++df) global[df] = K(df);
+  }
+  void evaluate(int k, Point xi, double* out) const override {
+    // FreeFEM's layout is (df, component, operator) with df fastest.
+    thread_local std::vector<double> buffer;
+    const size_t size = static_cast<size_t>(nd_) * nc_ * last_operatortype;
+    if (buffer.size() < size) buffer.resize(size);
+    KNMK_<double> fb(buffer.data(), nd_, nc_, last_operatortype);
+    static const bool what[last_operatortype] = {true, true, true, false, false, false, false, false, false, false};
+    const FElement K = vh_[k];
+    K.BF(what, R2(xi.x, xi.y), fb);
+    for (int df = 0; df < nd_; ++df)
+      for (int c = 0; c < nc_; ++c) {
+        double* o = out + (df * nc_ + c) * 3;
+        o[0] = fb(df, c, op_id);
+        o[1] = fb(df, c, op_dx);
+        o[2] = fb(df, c, op_dy);
+      }
+  }
+
+ private:
+  const FESpace& vh_;
+  int nd_, nc_;
+};
+
+// Vertices, triangles and FreeFEM's own adjacency.
+dlmfsi::Mesh convert(const Fem2D::Mesh& th) {
+  dlmfsi::Mesh m;
+  m.vertices.resize(th.nv);
+  for (int v = 0; v < th.nv; ++v) m.vertices[v] = {th(v).x, th(v).y};
+  m.triangles.resize(th.nt);
+  m.neighbours.resize(th.nt);
+  for (int k = 0; k < th.nt; ++k)
+    for (int i = 0; i < 3; ++i) {
+      m.triangles[k][i] = th(k, i);
+      int j = i;
+      const int kk = th.ElementAdj(k, j);
+      m.neighbours[k][i] = (kk < 0 || kk == k) ? -1 : kk;
+    }
+  m.check();
+  return m;
+}
+
+class DlmfsiOp : public E_F0mps {
+ public:
+  typedef newpMatrice_Creuse<double> Result;
+  static const int n_name_param = 12;
+  static basicAC_F0::name_and_type name_param[n_name_param];
+  enum { kC1, kC2, kFluid, kSolid, kMethod, kGradient, kQforder, kTol, kSubdivide, kOutside, kOutsideTol, kThreads };
+
+  Expression fluid_space, solid_space, map_x, map_y;
+  Expression nargs[n_name_param];
+  // fluid=[..] / solid=[..] given as literal arrays: one expression per entry.
+  std::vector<Expression> fluid_list, solid_list;
+
+  explicit DlmfsiOp(const basicAC_F0& args) {
+    // A literal [0,1] arrives as E_Array, an int[int] variable as KN_<long>: declare what was given.
+    basicAC_F0::name_and_type np[n_name_param];
+    for (int i = 0; i < n_name_param; ++i) np[i] = name_param[i];
+    for (int i : {int(kFluid), int(kSolid)})
+      if (args.find(np[i].name).left() == atype<E_Array>()) np[i].type = &typeid(E_Array);
+    args.SetNameParam(n_name_param, np, nargs);
+    for (int i : {int(kFluid), int(kSolid)})
+      if (const E_Array* a = dynamic_cast<const E_Array*>(nargs[i])) {
+        auto& list = i == kFluid ? fluid_list : solid_list;
+        for (int e = 0; e < a->size(); ++e) list.push_back(to<long>((*a)[e]));
+        nargs[i] = 0;
+      }
+    fluid_space = to<pfes*>(args[0]);
+    solid_space = to<pfes*>(args[1]);
+    const E_Array* xy = dynamic_cast<const E_Array*>(args[2].LeftValue());
+    if (!xy || xy->size() != 2) CompileError("dlmfsi(Vf, Vs, [X, Y], ...): the map must be an array of two FE functions");
+    map_x = to<pfer>((*xy)[0]);
+    map_y = to<pfer>((*xy)[1]);
+  }
+
+  static ArrayOfaType typeargs() { return ArrayOfaType(atype<pfes*>(), atype<pfes*>(), atype<E_Array>()); }
+  static E_F0* f(const basicAC_F0& args) { return new DlmfsiOp(args); }
+  AnyType operator()(Stack stack) const;
+
+ private:
+  template <class T>
+  T arg(int i, Stack stack, T otherwise) const {
+    return nargs[i] ? GetAny<T>((*nargs[i])(stack)) : otherwise;
+  }
+  std::string text(int i, Stack stack, const char* otherwise) const {
+    return nargs[i] ? *GetAny<string*>((*nargs[i])(stack)) : std::string(otherwise);
+  }
+  std::vector<int> components(int i, const std::vector<Expression>& list, Stack stack) const {
+    std::vector<int> out;
+    for (Expression e : list) out.push_back(static_cast<int>(GetAny<long>((*e)(stack))));
+    if (nargs[i]) {
+      KN_<long> v = GetAny<KN_<long> >((*nargs[i])(stack));
+      for (int k = 0; k < v.N(); ++k) out.push_back(static_cast<int>(v[k]));
+    }
+    if (out.empty()) out.push_back(0);
+    return out;
+  }
+  dlmfsi::CouplingOptions options(Stack stack) const;
+};
+
+basicAC_F0::name_and_type DlmfsiOp::name_param[n_name_param] = {
+    {"c1", &typeid(double)},        {"c2", &typeid(double)},        {"fluid", &typeid(KN_<long>)},
+    {"solid", &typeid(KN_<long>)},  {"method", &typeid(string*)},   {"gradient", &typeid(string*)},
+    {"qforder", &typeid(long)},     {"tol", &typeid(double)},       {"subdivide", &typeid(long)},
+    {"outside", &typeid(string*)},  {"outsidetol", &typeid(double)}, {"threads", &typeid(long)}};
+
+dlmfsi::CouplingOptions DlmfsiOp::options(Stack stack) const {
+  using Options = dlmfsi::CouplingOptions;
+  Options o;
+  o.c1 = arg(kC1, stack, 1.0);
+  o.c2 = arg(kC2, stack, 1.0);
+  o.fluid_components = components(kFluid, fluid_list, stack);
+  o.solid_components = components(kSolid, solid_list, stack);
+  const std::string method = text(kMethod, stack, "exact");
+  if (method == "exact")
+    o.method = Options::Method::Exact;
+  else if (method == "quadrature")
+    o.method = Options::Method::Quadrature;
+  else
+    throw dlmfsi::Error("method=\"" + method + "\": expected \"exact\" or \"quadrature\"");
+  const std::string gradient = text(kGradient, stack, "chain");
+  if (gradient == "chain")
+    o.gradient = Options::Gradient::Chain;
+  else if (gradient == "listing")
+    o.gradient = Options::Gradient::Listing;
+  else
+    throw dlmfsi::Error("gradient=\"" + gradient + "\": expected \"chain\" or \"listing\"");
+  o.qforder = static_cast<int>(arg(kQforder, stack, -1L));
+  o.tol = arg(kTol, stack, o.tol);
+  o.subdivide = static_cast<int>(arg(kSubdivide, stack, -1L));
+  const std::string outside = text(kOutside, stack, "error");
+  if (outside == "drop")
+    o.drop_outside = true;
+  else if (outside != "error")
+    throw dlmfsi::Error("outside=\"" + outside + "\": expected \"error\" or \"drop\"");
+  o.outside_tol = arg(kOutsideTol, stack, o.outside_tol);
+  o.threads = static_cast<int>(arg(kThreads, stack, 1L));
+  return o;
+}
+
+AnyType DlmfsiOp::operator()(Stack stack) const {
+  std::string failure;
+  try {
+    const dlmfsi::CouplingOptions opt = options(stack);
+    FESpace* vf = **GetAny<pfes*>((*fluid_space)(stack));
+    FESpace* vs = **GetAny<pfes*>((*solid_space)(stack));
+    if (!vf || !vs) throw dlmfsi::Error("a space is not defined");
+    const pfer px = GetAny<pfer>((*map_x)(stack)), py = GetAny<pfer>((*map_y)(stack));
+    for (const pfer* p : {&px, &py})
+      if (!p->first || !p->first->x() || !(FESpace*)p->first->Vh)
+        throw dlmfsi::Error("the map [X, Y] holds a finite element function without values");
+    const FESpace& sx = *(FESpace*)px.first->Vh;
+    const FESpace& sy = *(FESpace*)py.first->Vh;
+    if (&sx.Th != &vs->Th || &sy.Th != &vs->Th)
+      throw dlmfsi::Error("the map [X, Y] is not defined on the mesh of the multiplier space Vs");
+    const KN<double>& cx = *px.first->x();
+    const KN<double>& cy = *py.first->x();
+
+    const dlmfsi::Mesh fluid = convert(vf->Th);
+    const dlmfsi::Mesh solid = convert(vs->Th);
+    const SpaceBasis fluid_basis(*vf), multiplier(*vs), map_x_basis(sx), map_y_basis(sy);
+    const dlmfsi::FieldMap map(map_x_basis, &cx[0], px.second, map_y_basis, &cy[0], py.second);
+    dlmfsi::CouplingReport report;
+    const dlmfsi::CsrMatrix b = dlmfsi::assemble_coupling(fluid, fluid_basis, solid, multiplier, map, opt, &report);
+    if (verbosity > 1) cout << report.summary() << endl;
+    if (opt.drop_outside && report.outside_area > 0 && verbosity > 0)
+      cout << "dlmfsi: dropped area outside the fluid mesh " << report.outside_area << " (solid triangle "
+           << report.worst_triangle << " worst)" << endl;
+
+    MatriceMorse<double>* pa = new MatriceMorse<double>(b.rows, b.cols, 0, 0);
+    std::vector<int> start(b.start), column(b.column);
+    std::vector<double> value(b.value);
+    pa->set(b.rows, b.cols, 0, value.size(), start.data(), column.data(), value.data(), 0, 1);
+    return SetAny<newpMatrice_Creuse<double> >(newpMatrice_Creuse<double>(stack, pa));
+  } catch (const std::exception& e) {
+    failure = e.what();
+  } catch (...) {
+    failure = "dlmfsi: unknown C++ exception";
+  }
+  ExecError(failure);
+  return Nothing;
+}
+
+}  // namespace
+
+static void Load_Init() {
+  Global.Add("dlmfsi", "(", new OneOperatorCode<DlmfsiOp>);
+}
+
+LOADFUNC(Load_Init)
