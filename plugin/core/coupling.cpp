@@ -335,7 +335,7 @@ CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const M
                           ? 10
                           : std::max(0, total.fluid_degree + total.solid_degree - (opt.c2 == 0 ? 2 : 0));
   total.rule_degree = product;
-  total.curved_rule_degree = opt.qforder >= 0 ? opt.qforder : std::min(60, product + 4);
+  total.curved_rule_degree = opt.qforder >= 0 ? opt.qforder : std::min(60, product + 6);
   if (opt.method == CouplingOptions::Method::Quadrature && opt.qforder >= 0) total.rule_degree = opt.qforder;
 
   FluidGrid grid(fluid);
