@@ -6,7 +6,7 @@
 
 namespace dlmfsi {
 
-int polynomial_degree(const Basis& basis, int k) {
+int polynomial_degree(const Basis& basis, const std::vector<int>& components, int k) {
   constexpr int kMaxDegree = 12, kSamples = kMaxDegree + 2;
   const int width = basis.local_dofs() * basis.components() * 3;
   // Segments chosen inside the reference triangle, away from its vertices and from symmetry lines.
@@ -20,6 +20,8 @@ int polynomial_degree(const Basis& basis, int k) {
                      &samples[static_cast<size_t>(s) * width]);
     }
     for (int f = 0; f < width; f += 3) {  // values only
+      const int comp = (f / 3) % basis.components();
+      if (!components.empty() && std::find(components.begin(), components.end(), comp) == components.end()) continue;
       std::vector<double> d(kSamples);
       double scale = 0;
       for (int s = 0; s < kSamples; ++s) {

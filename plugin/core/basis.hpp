@@ -1,6 +1,8 @@
 // A finite element space seen one triangle at a time. The FreeFEM adapter implements it with the element's
 // own basis evaluation, so the core works for any element without tables of its own.
 #pragma once
+#include <vector>
+
 #include "point.hpp"
 
 namespace dlmfsi {
@@ -23,7 +25,8 @@ class Basis {
 
 // The polynomial degree of the basis on triangle k, found by probing: along three lines through the
 // reference triangle, the (d+1)-th finite differences of every basis function vanish (to 1e-9 relative)
-// for the smallest such d. Returns -1 when no degree up to 12 fits (not a polynomial element).
-int polynomial_degree(const Basis& basis, int k = 0);
+// for the smallest such d. Only the listed components count (all when the list is empty). Returns -1 when
+// no degree up to 12 fits (not a polynomial element).
+int polynomial_degree(const Basis& basis, const std::vector<int>& components = {}, int k = 0);
 
 }  // namespace dlmfsi

@@ -123,7 +123,7 @@ class Worker {
     auto at = [&](int i, int j) -> Point& { return grid[j * (n + 1) - j * (j - 1) / 2 + i]; };
     for (int j = 0; j <= n; ++j)
       for (int i = 0; i + j <= n; ++i) {
-        at(i, j) = map_.evaluate(mt.k, {static_cast<double>(i) / n, static_cast<double>(j) / n}).x;
+        at(i, j) = mt.at({static_cast<double>(i) / n, static_cast<double>(j) / n}).x;
         if (!std::isfinite(at(i, j).x) || !std::isfinite(at(i, j).y))
           throw Error("the map is NaN or Inf inside solid triangle " + std::to_string(mt.k));
       }
@@ -151,7 +151,7 @@ class Worker {
       for (const RulePoint& q : rule) {
         const Point y = from_reference(tri, q.xi);
         MapValue mv;
-        const Point xi = mt.pull_back(map_, y, mv);
+        const Point xi = mt.pull_back(y, mv);
         const double det = mt.affine ? mt.affine_det : det2(mv.jac);
         if (!(det > 0)) throw Error("the map folds solid triangle " + std::to_string(mt.k));
         fluid_space_.evaluate(kf, to_reference(kc, y), fvals_.data());
@@ -173,7 +173,7 @@ class Worker {
     const auto& rule = triangle_rule(mt.affine ? report_.rule_degree : report_.curved_rule_degree);
     double outside = 0;
     std::vector<Sub> stack{{{{0, 0}, {1, 0}, {0, 1}}, {mt.image[0], mt.image[1], mt.image[2]}, 0}};
-    auto image_of = [&](Point xi) { return mt.affine ? from_reference(mt.image, xi) : map_.evaluate(mt.k, xi).x; };
+    auto image_of = [&](Point xi) { return mt.affine ? from_reference(mt.image, xi) : mt.at(xi).x; };
     while (!stack.empty()) {
       Sub s = stack.back();
       stack.pop_back();
@@ -190,7 +190,7 @@ class Worker {
       const double ref_area = 0.5 * area2(s.ref[0], s.ref[1], s.ref[2]);
       for (const RulePoint& q : rule) {
         const Point xi = from_reference(s.ref, q.xi);
-        MapValue mv = mt.affine ? mt.affine_value : map_.evaluate(mt.k, xi);
+        MapValue mv = mt.affine ? mt.affine_value : mt.at(xi);
         if (mt.affine) mv.x = from_reference(mt.image, xi);
         const double ds = q.weight * ref_area * solid_jacobian;
         const int kf = search_.locate(mv.x, hint_);
@@ -328,8 +328,8 @@ CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const M
   const int last = opt.last_solid < 0 ? solid.size() : std::min(solid.size(), opt.last_solid);
 
   CouplingReport total;
-  total.fluid_degree = polynomial_degree(fluid_space);
-  total.solid_degree = polynomial_degree(multiplier);
+  total.fluid_degree = polynomial_degree(fluid_space, opt.fluid_components);
+  total.solid_degree = polynomial_degree(multiplier, opt.solid_components);
   // Exact for the product of the two bases (affine maps); 10 when an element is not polynomial.
   const int product = (total.fluid_degree < 0 || total.solid_degree < 0)
                           ? 10

@@ -17,6 +17,8 @@ class SolidMap {
   virtual ~SolidMap() = default;
   // X at reference point xi of solid triangle k. Must be safe to call from several threads at once.
   virtual MapValue evaluate(int k, Point xi) const = 0;
+  // The polynomial degree of X on each triangle (1 to 6), or -1 when unknown or not polynomial.
+  virtual int degree() const { return -1; }
 };
 
 // X = (sum_i x_i phi_i^cx, sum_i y_i phi_i^cy): components of finite element functions on the solid mesh
@@ -25,6 +27,7 @@ class FieldMap : public SolidMap {
  public:
   FieldMap(const Basis& space_x, const double* coef_x, int comp_x, const Basis& space_y, const double* coef_y, int comp_y);
   MapValue evaluate(int k, Point xi) const override;
+  int degree() const override { return degree_; }
 
  private:
   struct Part {
@@ -34,10 +37,16 @@ class FieldMap : public SolidMap {
   };
   void add(const Part& p, int k, Point xi, int a, MapValue& v) const;
   Part part_[2];
+  int degree_ = -1;
 };
 
 // One solid triangle k under the map: the images of its corners and how its image may be handled.
-struct MappedTriangle {
+// When the map's degree d is known, X is fitted once on the triangle's degree-d lattice (exact for a
+// polynomial map) and then evaluated as a polynomial in the reference coordinates, which makes
+// Newton's pull-back and the shape tests cheap.
+class MappedTriangle {
+ public:
+  static constexpr int kMaxDegree = 6;
   int k = -1;
   Point solid[3];    // corners in the reference configuration
   Point image[3];    // X at the corners
@@ -47,13 +56,24 @@ struct MappedTriangle {
   double affine_det = 0;  // det of that jacobian (> 0)
 
   // Checks the corners (finite, image counter-clockwise, not degenerate: exact predicates) and classifies
-  // the map by sampling it at interior and edge points; throws Error naming triangle k on bad input.
+  // the map; throws Error naming triangle k on bad input (NaN/Inf, flat, inverted).
   void prepare(const Mesh& solid_mesh, const SolidMap& map, int k);
 
+  // X and its jacobian (with respect to s) at reference point xi.
+  MapValue at(Point xi) const;
+
   // The reference point xi with X(xi) = y and the map there; for non-affine triangles Newton's method
-  // from the affine guess, stopping at |dxi| < 1e-14. Throws Error if it fails to converge or the jacobian
-  // determinant is not positive (a folded map).
-  Point pull_back(const SolidMap& map, Point y, MapValue& value) const;
+  // from the affine guess, stopping at |dxi| < 1e-14 or where the steps stall at the round-off floor.
+  // Throws Error if it fails to converge or the jacobian determinant is not positive (a folded map).
+  Point pull_back(Point y, MapValue& value) const;
+
+ private:
+  // value and reference-coordinate derivatives of the fitted polynomial
+  void polynomial(Point xi, Point& x, Point& dx1, Point& dx2) const;
+  const SolidMap* map_ = nullptr;
+  int degree_ = -1;
+  double cx_[(kMaxDegree + 1) * (kMaxDegree + 2) / 2], cy_[(kMaxDegree + 1) * (kMaxDegree + 2) / 2];
+  double inv_[2][2];  // (d s / d xi)^-1
 };
 
 inline double det2(const double j[2][2]) { return j[0][0] * j[1][1] - j[0][1] * j[1][0]; }
