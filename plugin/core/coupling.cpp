@@ -10,6 +10,7 @@
 
 #include "errors.hpp"
 #include "fluid_search.hpp"
+#include "polynomial_basis.hpp"
 #include "predicates.hpp"
 #include "rules.hpp"
 
@@ -31,6 +32,23 @@ struct Range {
   int first, last;
 };
 
+std::vector<int> unique(std::vector<int> v) {
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  return v;
+}
+
+// The local dofs that carry the listed components.
+std::vector<int> used_dofs(const Basis& basis, const std::vector<int>& components) {
+  std::vector<int> dofs;
+  for (int c : components) {
+    int first, last;
+    basis.component_dofs(c, first, last);
+    for (int d = first; d < last; ++d) dofs.push_back(d);
+  }
+  return unique(dofs);
+}
+
 // Everything one thread needs to assemble a run of solid triangles.
 class Worker {
  public:
@@ -38,7 +56,9 @@ class Worker {
          const Basis& multiplier, const SolidMap& map, const CouplingOptions& opt, const CouplingReport& degrees)
       : fluid_(fluid), fluid_space_(fluid_space), solid_(solid), multiplier_(multiplier), map_(map), opt_(opt),
         search_(grid), nf_(fluid_space.local_dofs()), ns_(multiplier.local_dofs()),
-        ncf_(fluid_space.components()), ncs_(multiplier.components()) {
+        ncf_(fluid_space.components()), ncs_(multiplier.components()),
+        fluid_poly_(fluid_space, fluid, degrees.fluid_degree, opt.fluid_components),
+        solid_poly_(multiplier, solid, degrees.solid_degree, opt.solid_components) {
     report_.fluid_degree = degrees.fluid_degree;
     report_.solid_degree = degrees.solid_degree;
     report_.rule_degree = degrees.rule_degree;
@@ -50,13 +70,9 @@ class Worker {
       multiplier.component_dofs(opt.solid_components[p], s.first, s.last);
       frange_.push_back(f);
       srange_.push_back(s);
-      for (int j = f.first; j < f.last; ++j) fluid_used_.push_back(j);
-      for (int i = s.first; i < s.last; ++i) solid_used_.push_back(i);
     }
-    for (auto* v : {&fluid_used_, &solid_used_}) {
-      std::sort(v->begin(), v->end());
-      v->erase(std::unique(v->begin(), v->end()), v->end());
-    }
+    fluid_used_ = used_dofs(fluid_space, opt.fluid_components);
+    solid_used_ = used_dofs(multiplier, opt.solid_components);
     fvals_.resize(static_cast<size_t>(nf_) * ncf_ * 3);
     svals_.resize(static_cast<size_t>(ns_) * ncs_ * 3);
     fdofs_.resize(nf_);
@@ -154,8 +170,8 @@ class Worker {
         const Point xi = mt.pull_back(y, mv);
         const double det = mt.affine ? mt.affine_det : det2(mv.jac);
         if (!(det > 0)) throw Error("the map folds solid triangle " + std::to_string(mt.k));
-        fluid_space_.evaluate(kf, to_reference(kc, y), fvals_.data());
-        multiplier_.evaluate(mt.k, xi, svals_.data());
+        fluid_poly_.evaluate(kf, to_reference(kc, y), fvals_.data());
+        solid_poly_.evaluate(mt.k, xi, svals_.data());
         accumulate(area * q.weight / det, mv.jac);
       }
     }
@@ -202,8 +218,8 @@ class Worker {
         Point kc[3];
         fluid_.corners(kf, kc);
         fluid_columns(kf);
-        fluid_space_.evaluate(kf, to_reference(kc, mv.x), fvals_.data());
-        multiplier_.evaluate(mt.k, xi, svals_.data());
+        fluid_poly_.evaluate(kf, to_reference(kc, mv.x), fvals_.data());
+        solid_poly_.evaluate(mt.k, xi, svals_.data());
         accumulate(ds, mv.jac);
       }
     }
@@ -285,6 +301,7 @@ class Worker {
   const CouplingOptions& opt_;
   FluidSearch search_;
   int nf_, ns_, ncf_, ncs_;
+  PolynomialBasis fluid_poly_, solid_poly_;
   int hint_ = 0;
   std::vector<Range> frange_, srange_;
   std::vector<int> fluid_used_, solid_used_;
@@ -335,7 +352,7 @@ CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const M
                           ? 10
                           : std::max(0, total.fluid_degree + total.solid_degree - (opt.c2 == 0 ? 2 : 0));
   total.rule_degree = product;
-  total.curved_rule_degree = opt.qforder >= 0 ? opt.qforder : std::min(60, product + 6);
+  total.curved_rule_degree = opt.qforder >= 0 ? opt.qforder : std::min(60, product + 2);
   if (opt.method == CouplingOptions::Method::Quadrature && opt.qforder >= 0) total.rule_degree = opt.qforder;
 
   FluidGrid grid(fluid);

@@ -45,7 +45,7 @@ struct CouplingReport {
 // piece the integral is taken in fluid coordinates,
 //   int_T f(s) ds = int_{X(T)} f(X^-1(y)) |det grad X(X^-1(y))|^-1 dy,
 // with a rule exact for the product's degree when X is affine on T (exact to round-off), and with a rule
-// of degree qforder (default: the product degree + 6) and Newton pull-back otherwise; the error then falls
+// of degree qforder (default: the product degree + 2) and Newton pull-back otherwise; the error then falls
 // spectrally with qforder. Images with curved edges (P2 maps) are replaced by 4^subdivide straight
 // sub-triangles (the pull-back still uses the true map): only the band between the solid's curved
 // boundary and its chords is lost, an error falling 4x per level.

@@ -6,12 +6,14 @@
 #include <vector>
 
 #include "errors.hpp"
+#include "lattice.hpp"
+#include "polynomial_basis.hpp"
 #include "predicates.hpp"
 
 namespace dlmfsi {
 
-FieldMap::FieldMap(const Basis& space_x, const double* coef_x, int comp_x, const Basis& space_y, const double* coef_y,
-                   int comp_y) {
+FieldMap::FieldMap(const Mesh& solid, const Basis& space_x, const double* coef_x, int comp_x, const Basis& space_y,
+                   const double* coef_y, int comp_y) {
   part_[0] = {&space_x, coef_x, comp_x, 0, 0};
   part_[1] = {&space_y, coef_y, comp_y, 0, 0};
   bool known = true;
@@ -23,43 +25,72 @@ FieldMap::FieldMap(const Basis& space_x, const double* coef_x, int comp_x, const
     if (d < 0) known = false;
     degree_ = std::max(degree_, d);
   }
-  if (!known || degree_ < 1) degree_ = -1;  // not polynomial (or constant): evaluate the map itself
+  if (!known || degree_ < 1 || degree_ > MappedTriangle::kMaxDegree) {
+    degree_ = -1;  // not polynomial (or constant): evaluate the map itself
+    return;
+  }
+  // X on triangle k = sum over the component's dofs of (dof value) * (basis polynomial).
+  const int nm = monomial_count(degree_);
+  monomial_coef_.assign(static_cast<size_t>(solid.size()) * 2 * nm, 0.0);
+  for (int a = 0; a < 2; ++a) {
+    const Part& p = part_[a];
+    PolynomialBasis poly(*p.space, solid, degree_, {p.comp});
+    if (!poly.fitted()) {
+      degree_ = -1;
+      monomial_coef_.clear();
+      return;
+    }
+    std::vector<int> dofs(p.space->local_dofs());
+    const int nc = p.space->components();
+    for (int k = 0; k < solid.size(); ++k) {
+      p.space->dofs(k, dofs.data());
+      const double* c = poly.coefficients(k);
+      double* out = &monomial_coef_[(static_cast<size_t>(k) * 2 + a) * nm];
+      for (int f : poly.functions()) {
+        const double value = p.coef[dofs[f / nc]];
+        for (int m = 0; m < nm; ++m) out[m] += value * c[m];
+        c += nm;
+      }
+    }
+  }
 }
 
-void FieldMap::add(const Part& p, int k, Point xi, int a, MapValue& v) const {
-  const int nd = p.space->local_dofs(), nc = p.space->components();
-  // Small fixed buffers cover every FreeFEM 2D element used for maps; larger ones fall back to the heap.
-  double stack_out[64 * 4 * 3];
-  int stack_dofs[64];
-  std::vector<double> heap_out;
-  std::vector<int> heap_dofs;
-  double* out = stack_out;
-  int* dofs = stack_dofs;
-  if (nd * nc * 3 > 64 * 4 * 3 || nd > 64) {
-    heap_out.resize(static_cast<size_t>(nd) * nc * 3);
-    heap_dofs.resize(nd);
-    out = heap_out.data();
-    dofs = heap_dofs.data();
-  }
-  p.space->evaluate(k, xi, out);
-  p.space->dofs(k, dofs);
-  double val = 0, dx = 0, dy = 0;
-  for (int df = p.first; df < p.last; ++df) {
-    const double c = p.coef[dofs[df]];
-    const double* f = out + (df * nc + p.comp) * 3;
-    val += c * f[0];
-    dx += c * f[1];
-    dy += c * f[2];
-  }
-  (a == 0 ? v.x.x : v.x.y) = val;
-  v.jac[a][0] = dx;
-  v.jac[a][1] = dy;
+bool FieldMap::coefficients(int k, double* cx, double* cy) const {
+  if (monomial_coef_.empty()) return false;
+  const int nm = monomial_count(degree_);
+  const double* c = &monomial_coef_[static_cast<size_t>(k) * 2 * nm];
+  std::copy(c, c + nm, cx);
+  std::copy(c + nm, c + 2 * nm, cy);
+  return true;
 }
 
 MapValue FieldMap::evaluate(int k, Point xi) const {
   MapValue v{};
-  add(part_[0], k, xi, 0, v);
-  add(part_[1], k, xi, 1, v);
+  // X and Y are often two components of one vector function: evaluate that space once.
+  const bool shared = part_[0].space == part_[1].space && part_[0].coef == part_[1].coef;
+  thread_local std::vector<double> out;
+  thread_local std::vector<int> dofs;
+  for (int a = 0; a < 2; ++a) {
+    const Part& p = part_[a];
+    const int nc = p.space->components();
+    if (a == 0 || !shared) {
+      out.resize(static_cast<size_t>(p.space->local_dofs()) * nc * 3);
+      dofs.resize(p.space->local_dofs());
+      p.space->evaluate(k, xi, out.data());
+      p.space->dofs(k, dofs.data());
+    }
+    double val = 0, dx = 0, dy = 0;
+    for (int df = p.first; df < p.last; ++df) {
+      const double c = p.coef[dofs[df]];
+      const double* f = &out[(df * nc + p.comp) * 3];
+      val += c * f[0];
+      dx += c * f[1];
+      dy += c * f[2];
+    }
+    (a == 0 ? v.x.x : v.x.y) = val;
+    v.jac[a][0] = dx;
+    v.jac[a][1] = dy;
+  }
   return v;
 }
 
@@ -69,87 +100,17 @@ bool finite(Point p) { return std::isfinite(p.x) && std::isfinite(p.y); }
 
 std::string name(int k) { return "solid triangle " + std::to_string(k); }
 
-constexpr int monomials(int d) { return (d + 1) * (d + 2) / 2; }
-
-// Monomial m is xi1^a xi2^b, listed by total degree t = a + b, then b = 0..t.
-void exponents(int m, int& a, int& b) {
-  int t = 0;
-  while (monomials(t) <= m) ++t;
-  b = m - monomials(t - 1);
-  a = t - b;
-}
-
-// Lattice point m of degree d: (a/d, b/d) with the exponents of monomial m.
-Point lattice(int d, int m) {
-  int a, b;
-  exponents(m, a, b);
-  return {static_cast<double>(a) / d, static_cast<double>(b) / d};
-}
-
-// Inverse of the Vandermonde matrix V[p][m] = xi1^a_m xi2^b_m at the lattice points p of degree d.
-const std::vector<double>& vandermonde_inverse(int d) {
-  static const auto table = [] {
-    std::vector<std::vector<double>> inv(MappedTriangle::kMaxDegree + 1);
-    for (int deg = 1; deg <= MappedTriangle::kMaxDegree; ++deg) {
-      const int n = monomials(deg);
-      std::vector<double> a(static_cast<size_t>(n) * 2 * n, 0.0);  // [V | I], Gauss-Jordan with pivoting
-      for (int p = 0; p < n; ++p) {
-        const Point x = lattice(deg, p);
-        for (int m = 0; m < n; ++m) {
-          int ea, eb;
-          exponents(m, ea, eb);
-          a[p * 2 * n + m] = std::pow(x.x, ea) * std::pow(x.y, eb);
-        }
-        a[p * 2 * n + n + p] = 1;
-      }
-      for (int c = 0; c < n; ++c) {
-        int piv = c;
-        for (int r = c + 1; r < n; ++r)
-          if (std::fabs(a[r * 2 * n + c]) > std::fabs(a[piv * 2 * n + c])) piv = r;
-        for (int j = 0; j < 2 * n; ++j) std::swap(a[c * 2 * n + j], a[piv * 2 * n + j]);
-        const double diag = a[c * 2 * n + c];
-        for (int j = 0; j < 2 * n; ++j) a[c * 2 * n + j] /= diag;
-        for (int r = 0; r < n; ++r)
-          if (r != c) {
-            const double f = a[r * 2 * n + c];
-            if (f != 0)
-              for (int j = 0; j < 2 * n; ++j) a[r * 2 * n + j] -= f * a[c * 2 * n + j];
-          }
-      }
-      inv[deg].resize(static_cast<size_t>(n) * n);
-      for (int r = 0; r < n; ++r)
-        for (int c = 0; c < n; ++c) inv[deg][r * n + c] = a[r * 2 * n + n + c];
-    }
-    return inv;
-  }();
-  return table[d];
-}
-
 }  // namespace
 
 void MappedTriangle::polynomial(Point xi, Point& x, Point& dx1, Point& dx2) const {
-  double p1[kMaxDegree + 1], p2[kMaxDegree + 1];
-  p1[0] = p2[0] = 1;
-  for (int i = 1; i <= degree_; ++i) {
-    p1[i] = p1[i - 1] * xi.x;
-    p2[i] = p2[i - 1] * xi.y;
-  }
+  double v[monomial_count(kMaxDegree)], d1[monomial_count(kMaxDegree)], d2[monomial_count(kMaxDegree)];
+  monomials(degree_, xi, v, d1, d2);
   x = dx1 = dx2 = {0, 0};
-  int m = 0;
-  for (int t = 0; t <= degree_; ++t)
-    for (int b = 0; b <= t; ++b, ++m) {
-      const int a = t - b;
-      const double v = p1[a] * p2[b];
-      x = x + Point{cx_[m] * v, cy_[m] * v};
-      if (a > 0) {
-        const double d = a * p1[a - 1] * p2[b];
-        dx1 = dx1 + Point{cx_[m] * d, cy_[m] * d};
-      }
-      if (b > 0) {
-        const double d = b * p1[a] * p2[b - 1];
-        dx2 = dx2 + Point{cx_[m] * d, cy_[m] * d};
-      }
-    }
+  for (int m = 0; m < monomial_count(degree_); ++m) {
+    x = x + Point{cx_[m] * v[m], cy_[m] * v[m]};
+    dx1 = dx1 + Point{cx_[m] * d1[m], cy_[m] * d1[m]};
+    dx2 = dx2 + Point{cx_[m] * d2[m], cy_[m] * d2[m]};
+  }
 }
 
 MapValue MappedTriangle::at(Point xi) const {
@@ -180,26 +141,29 @@ void MappedTriangle::prepare(const Mesh& solid_mesh, const SolidMap& map, int kk
   degree_ = map.degree();
   if (degree_ > kMaxDegree) degree_ = -1;
   if (degree_ >= 1) {
-    const int n = monomials(degree_);
-    double vx[monomials(kMaxDegree)], vy[monomials(kMaxDegree)];
-    for (int p = 0; p < n; ++p) {
-      const Point x = map.evaluate(k, lattice(degree_, p)).x;
-      if (!finite(x)) throw Error("the map is NaN or Inf in " + name(k));
-      vx[p] = x.x;
-      vy[p] = x.y;
-    }
-    const auto& inv = vandermonde_inverse(degree_);
-    for (int m = 0; m < n; ++m) {
-      cx_[m] = cy_[m] = 0;
+    const int n = monomial_count(degree_);
+    if (!map.coefficients(k, cx_, cy_)) {
+      double vx[monomial_count(kMaxDegree)], vy[monomial_count(kMaxDegree)];
       for (int p = 0; p < n; ++p) {
-        cx_[m] += inv[m * n + p] * vx[p];
-        cy_[m] += inv[m * n + p] * vy[p];
+        const Point x = map.evaluate(k, lattice_point(degree_, p)).x;
+        vx[p] = x.x;
+        vy[p] = x.y;
+      }
+      const auto& inv = vandermonde_inverse(degree_);
+      for (int m = 0; m < n; ++m) {
+        cx_[m] = cy_[m] = 0;
+        for (int p = 0; p < n; ++p) {
+          cx_[m] += inv[m * n + p] * vx[p];
+          cy_[m] += inv[m * n + p] * vy[p];
+        }
       }
     }
+    for (int m = 0; m < n; ++m)
+      if (!std::isfinite(cx_[m]) || !std::isfinite(cy_[m])) throw Error("the map is NaN or Inf in " + name(k));
   }
   const Point ref[3] = {{0, 0}, {1, 0}, {0, 1}};
   for (int i = 0; i < 3; ++i) {
-    image[i] = degree_ >= 1 ? map.evaluate(k, ref[i]).x : at(ref[i]).x;
+    image[i] = at(ref[i]).x;
     if (!finite(image[i])) throw Error("the map is NaN or Inf at a corner of " + name(k));
   }
   const int o = orient2d(image[0], image[1], image[2]);
@@ -207,9 +171,12 @@ void MappedTriangle::prepare(const Mesh& solid_mesh, const SolidMap& map, int kk
   if (o < 0) throw Error("the map inverts " + name(k) + " (its image is clockwise: a reflection or a fold)");
 
   // Compare X with the affine interpolant of the corner images at edge and interior points.
+  // Round-off of the fit and of the map's own evaluation scales with the coordinates, not the triangle.
   const double scale = std::fabs(image[1].x - image[0].x) + std::fabs(image[1].y - image[0].y) +
                        std::fabs(image[2].x - image[0].x) + std::fabs(image[2].y - image[0].y);
-  const double tol = 1e-13 * scale;
+  double magnitude = 0;
+  for (const Point& p : image) magnitude = std::max({magnitude, std::fabs(p.x), std::fabs(p.y)});
+  const double tol = 1e-12 * scale + 1e-14 * magnitude;
   const Point edge_points[6] = {{0.5, 0}, {0.5, 0.5}, {0, 0.5}, {0.25, 0}, {0.75, 0.25}, {0, 0.75}};
   const Point inner_points[3] = {{1.0 / 3, 1.0 / 3}, {0.2, 0.6}, {0.6, 0.15}};
   straight = true;

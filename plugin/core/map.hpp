@@ -19,15 +19,21 @@ class SolidMap {
   virtual MapValue evaluate(int k, Point xi) const = 0;
   // The polynomial degree of X on each triangle (1 to 6), or -1 when unknown or not polynomial.
   virtual int degree() const { return -1; }
+  // The monomial coefficients (lattice.hpp order, degree()) of X and Y on triangle k in the reference
+  // coordinates, or false to let the caller fit them from evaluate().
+  virtual bool coefficients(int, double*, double*) const { return false; }
 };
 
 // X = (sum_i x_i phi_i^cx, sum_i y_i phi_i^cy): components of finite element functions on the solid mesh
-// (two scalar functions, or two components of one vector function).
+// (two scalar functions, or two components of one vector function). For polynomial spaces the monomial
+// coefficients of X on every solid triangle are computed once, here.
 class FieldMap : public SolidMap {
  public:
-  FieldMap(const Basis& space_x, const double* coef_x, int comp_x, const Basis& space_y, const double* coef_y, int comp_y);
+  FieldMap(const Mesh& solid, const Basis& space_x, const double* coef_x, int comp_x, const Basis& space_y,
+           const double* coef_y, int comp_y);
   MapValue evaluate(int k, Point xi) const override;
   int degree() const override { return degree_; }
+  bool coefficients(int k, double* cx, double* cy) const override;
 
  private:
   struct Part {
@@ -35,9 +41,9 @@ class FieldMap : public SolidMap {
     const double* coef;
     int comp, first, last;
   };
-  void add(const Part& p, int k, Point xi, int a, MapValue& v) const;
   Part part_[2];
   int degree_ = -1;
+  std::vector<double> monomial_coef_;  // per triangle: x then y coefficients
 };
 
 // One solid triangle k under the map: the images of its corners and how its image may be handled.
@@ -72,7 +78,7 @@ class MappedTriangle {
   void polynomial(Point xi, Point& x, Point& dx1, Point& dx2) const;
   const SolidMap* map_ = nullptr;
   int degree_ = -1;
-  double cx_[(kMaxDegree + 1) * (kMaxDegree + 2) / 2], cy_[(kMaxDegree + 1) * (kMaxDegree + 2) / 2];
+  double cx_[(kMaxDegree + 1) * (kMaxDegree + 2) / 2], cy_[(kMaxDegree + 1) * (kMaxDegree + 2) / 2];  // monomial coefficients
   double inv_[2][2];  // (d s / d xi)^-1
 };
 

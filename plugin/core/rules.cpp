@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <mutex>
+#include <utility>
 
 #include "errors.hpp"
 
@@ -52,6 +53,23 @@ std::vector<RulePoint> make_rule(int degree) {
     r.push_back({{1.0 / 6, 1.0 / 6}, 1.0 / 3});
     r.push_back({{2.0 / 3, 1.0 / 6}, 1.0 / 3});
     r.push_back({{1.0 / 6, 2.0 / 3}, 1.0 / 3});
+  } else if (degree == 4) {
+    // Dunavant's 6-point rule.
+    for (auto [a, w] : {std::pair{0.445948490915965, 0.223381589678011}, std::pair{0.091576213509771, 0.109951743655322}}) {
+      r.push_back({{a, a}, w});
+      r.push_back({{1 - 2 * a, a}, w});
+      r.push_back({{a, 1 - 2 * a}, w});
+    }
+  } else if (degree == 6) {
+    // Dunavant's 12-point rule.
+    for (auto [a, w] : {std::pair{0.249286745170910, 0.116786275726379}, std::pair{0.063089014491502, 0.050844906370207}}) {
+      r.push_back({{a, a}, w});
+      r.push_back({{1 - 2 * a, a}, w});
+      r.push_back({{a, 1 - 2 * a}, w});
+    }
+    const double a = 0.310352451033784, b = 0.053145049844817, c = 0.636502499121399, w = 0.082851075618374;
+    for (auto [u, v] : {std::pair{a, b}, std::pair{b, a}, std::pair{a, c}, std::pair{c, a}, std::pair{b, c}, std::pair{c, b}})
+      r.push_back({{u, v}, w});
   } else if (degree == 5) {
     const double s = std::sqrt(15.0);
     const double a1 = (6 - s) / 21, b1 = (9 + 2 * s) / 21, w1 = (155 - s) / 1200;

@@ -194,7 +194,7 @@ AnyType DlmfsiOp::operator()(Stack stack) const {
     const dlmfsi::Mesh fluid = convert(vf->Th);
     const dlmfsi::Mesh solid = convert(vs->Th);
     const SpaceBasis fluid_basis(*vf), multiplier(*vs), map_x_basis(sx), map_y_basis(sy);
-    const dlmfsi::FieldMap map(map_x_basis, &cx[0], px.second, map_y_basis, &cy[0], py.second);
+    const dlmfsi::FieldMap map(solid, map_x_basis, &cx[0], px.second, map_y_basis, &cy[0], py.second);
     dlmfsi::CouplingReport report;
     const dlmfsi::CsrMatrix b = dlmfsi::assemble_coupling(fluid, fluid_basis, solid, multiplier, map, opt, &report);
     if (verbosity > 1) cout << report.summary() << endl;

@@ -1,0 +1,122 @@
+#include "polynomial_basis.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "lattice.hpp"
+
+namespace dlmfsi {
+
+namespace {
+// A point off every lattice and symmetry line, where the element check takes place.
+constexpr Point kCheckPoint{0.2113248654, 0.3141592654};
+}  // namespace
+
+PolynomialBasis::PolynomialBasis(const Basis& basis, const Mesh& mesh, int degree, const std::vector<int>& components)
+    : basis_(basis), mesh_(mesh), degree_(degree > kMaxLatticeDegree ? -1 : degree), nm_(0), nc_(basis.components()) {
+  for (int c : components) {
+    int first, last;
+    basis.component_dofs(c, first, last);
+    for (int d = first; d < last; ++d) functions_.push_back(d * nc_ + c);
+  }
+  std::sort(functions_.begin(), functions_.end());
+  functions_.erase(std::unique(functions_.begin(), functions_.end()), functions_.end());
+  sample_.resize(static_cast<size_t>(basis.local_dofs()) * nc_ * 3);
+  check_.resize(sample_.size());
+  if (degree_ < 0 || mesh.size() == 0) {
+    degree_ = -1;
+    return;
+  }
+  nm_ = monomial_count(degree_);
+  reference_.resize(functions_.size() * nm_);
+  fit(0, reference_.data());
+  slot_.assign(mesh.size(), -1);
+  slot_[0] = -2;
+  // Confirm the fit reproduces the basis (values and derivatives) off the lattice.
+  double worst = 0, scale = 1e-300;
+  for (Point t : {Point{0.137, 0.291}, Point{0.52, 0.083}}) {
+    basis_.evaluate(0, t, sample_.data());
+    evaluate(0, t, check_.data());
+    for (int f : functions_)
+      for (int d = 0; d < 3; ++d) {
+        worst = std::max(worst, std::fabs(sample_[f * 3 + d] - check_[f * 3 + d]));
+        scale = std::max(scale, std::fabs(sample_[f * 3 + d]));
+      }
+  }
+  if (worst > 1e-9 * scale) degree_ = -1;
+}
+
+void PolynomialBasis::fit(int k, double* c) {
+  const auto& inv = vandermonde_inverse(degree_);
+  const size_t width = functions_.size();
+  std::vector<double> values(static_cast<size_t>(nm_) * width);
+  for (int q = 0; q < nm_; ++q) {
+    basis_.evaluate(k, lattice_point(degree_, q), sample_.data());
+    for (size_t f = 0; f < width; ++f) values[q * width + f] = sample_[functions_[f] * 3];
+  }
+  for (size_t f = 0; f < width; ++f)
+    for (int m = 0; m < nm_; ++m) {
+      double s = 0;
+      for (int q = 0; q < nm_; ++q) s += inv[m * nm_ + q] * values[q * width + f];
+      c[f * nm_ + m] = s;
+    }
+}
+
+const double* PolynomialBasis::coefficients(int k) {
+  int& slot = slot_[k];
+  if (slot == -1) {
+    // One evaluation decides whether element k shares the reference fit.
+    double v[monomial_count(kMaxLatticeDegree)], d1[monomial_count(kMaxLatticeDegree)],
+        d2[monomial_count(kMaxLatticeDegree)];
+    monomials(degree_, kCheckPoint, v, d1, d2);
+    basis_.evaluate(k, kCheckPoint, sample_.data());
+    bool same = true;
+    for (size_t f = 0; f < functions_.size() && same; ++f) {
+      double s = 0, scale = 0;
+      for (int m = 0; m < nm_; ++m) {
+        s += reference_[f * nm_ + m] * v[m];
+        scale += std::fabs(reference_[f * nm_ + m] * v[m]);
+      }
+      same = std::fabs(s - sample_[functions_[f] * 3]) <= 1e-12 * (scale + 1);
+    }
+    if (same) {
+      slot = -2;
+    } else {
+      slot = static_cast<int>(own_.size());
+      own_.resize(own_.size() + functions_.size() * nm_);
+      fit(k, &own_[slot]);
+    }
+  }
+  return slot == -2 ? reference_.data() : &own_[slot];
+}
+
+void PolynomialBasis::evaluate(int k, Point xi, double* out) {
+  if (degree_ < 0) {
+    basis_.evaluate(k, xi, out);
+    return;
+  }
+  const double* coef = coefficients(k);
+  // d xi / d x for x = p0 + xi1 e1 + xi2 e2
+  Point p[3];
+  mesh_.corners(k, p);
+  const Point e1 = p[1] - p[0], e2 = p[2] - p[0];
+  const double det = cross(e1, e2);
+  const double j11 = e2.y / det, j12 = -e2.x / det, j21 = -e1.y / det, j22 = e1.x / det;
+  double v[monomial_count(kMaxLatticeDegree)], d1[monomial_count(kMaxLatticeDegree)], d2[monomial_count(kMaxLatticeDegree)];
+  monomials(degree_, xi, v, d1, d2);
+  for (int f : functions_) {
+    double val = 0, g1 = 0, g2 = 0;
+    for (int m = 0; m < nm_; ++m) {
+      val += coef[m] * v[m];
+      g1 += coef[m] * d1[m];
+      g2 += coef[m] * d2[m];
+    }
+    coef += nm_;
+    double* o = out + f * 3;
+    o[0] = val;
+    o[1] = g1 * j11 + g2 * j21;
+    o[2] = g1 * j12 + g2 * j22;
+  }
+}
+
+}  // namespace dlmfsi

@@ -1,0 +1,45 @@
+// Fast evaluation of a Basis. On each element the basis functions are polynomials in the reference
+// coordinates (polynomial elements on straight triangles): they are fitted on the degree-d lattice, then
+// evaluated by monomials, with physical derivatives through the element's affine map. Elements that are
+// affine-equivalent (P0, P1, P1b, P2, P1nc, ...) share one fit: each element is checked against it with a
+// single basis evaluation at a generic point, and fitted on its own only where it differs (e.g. where dof
+// orientation or sign depends on the element).
+#pragma once
+#include <vector>
+
+#include "basis.hpp"
+#include "mesh.hpp"
+
+namespace dlmfsi {
+
+class PolynomialBasis {
+ public:
+  // degree: the basis degree on the listed components (polynomial_degree), or -1 to evaluate the basis
+  // itself at every point. Only the listed components, on the local dofs that carry them, are computed.
+  // The fit of the first element is checked at two points off the lattice; if it misses the basis (an
+  // element that is not polynomial of that degree), every evaluation goes to the basis itself.
+  PolynomialBasis(const Basis& basis, const Mesh& mesh, int degree, const std::vector<int>& components);
+
+  // Same layout as Basis::evaluate; only the listed components, on their dofs, are written.
+  void evaluate(int k, Point xi, double* out);
+
+  bool fitted() const { return degree_ >= 0; }
+  int degree() const { return degree_; }
+  // The fitted functions, as dof * components + component.
+  const std::vector<int>& functions() const { return functions_; }
+  // Monomial coefficients (monomial_count(degree) per function, in functions() order) on element k.
+  const double* coefficients(int k);
+
+ private:
+  void fit(int k, double* coefficients);
+  const Basis& basis_;
+  const Mesh& mesh_;
+  int degree_, nm_, nc_;
+  std::vector<int> functions_;
+  std::vector<double> reference_;  // the shared fit
+  std::vector<int> slot_;          // per element: -1 unchecked, -2 shared fit, else offset in own_
+  std::vector<double> own_;        // element fits that differ from the shared one
+  std::vector<double> sample_, check_;
+};
+
+}  // namespace dlmfsi
