@@ -20,9 +20,11 @@ std::string CouplingReport::summary() const {
   char s[512];
   std::snprintf(s, sizeof s,
                 "dlmfsi: %ld solid triangles (%ld affine, %ld straight, %ld curved), %ld pieces, %ld points, "
-                "degrees fluid %d multiplier %d rule %d/%d, image area %.6g, outside %.3g, %.3f s",
+                "degrees fluid %d multiplier %d rule %d/%d, image area %.6g, outside %.3g, %.3f s "
+                "(setup %.3f, pieces %.3f, matrix %.3f)",
                 solid_triangles, affine, straight, curved, pieces, points, fluid_degree, solid_degree, rule_degree,
-                curved_rule_degree, image_area, outside_area, seconds);
+                curved_rule_degree, image_area, outside_area, seconds, setup_seconds, pieces_seconds,
+                seconds - setup_seconds - pieces_seconds);
   return s;
 }
 
@@ -52,13 +54,13 @@ std::vector<int> used_dofs(const Basis& basis, const std::vector<int>& component
 // Everything one thread needs to assemble a run of solid triangles.
 class Worker {
  public:
-  Worker(const Mesh& fluid, const FluidGrid& grid, const Basis& fluid_space, const Mesh& solid,
-         const Basis& multiplier, const SolidMap& map, const CouplingOptions& opt, const CouplingReport& degrees)
+  Worker(const Mesh& fluid, const FluidGrid& grid, const Basis& fluid_space, const PolynomialBasis& fluid_poly,
+         const Mesh& solid, const Basis& multiplier, const PolynomialBasis& solid_poly, const SolidMap& map,
+         const CouplingOptions& opt, const CouplingReport& degrees)
       : fluid_(fluid), fluid_space_(fluid_space), solid_(solid), multiplier_(multiplier), map_(map), opt_(opt),
         search_(grid), nf_(fluid_space.local_dofs()), ns_(multiplier.local_dofs()),
         ncf_(fluid_space.components()), ncs_(multiplier.components()),
-        fluid_poly_(fluid_space, fluid, degrees.fluid_degree, opt.fluid_components),
-        solid_poly_(multiplier, solid, degrees.solid_degree, opt.solid_components) {
+        fluid_poly_(fluid_poly), solid_poly_(solid_poly) {
     report_.fluid_degree = degrees.fluid_degree;
     report_.solid_degree = degrees.solid_degree;
     report_.rule_degree = degrees.rule_degree;
@@ -301,7 +303,7 @@ class Worker {
   const CouplingOptions& opt_;
   FluidSearch search_;
   int nf_, ns_, ncf_, ncs_;
-  PolynomialBasis fluid_poly_, solid_poly_;
+  const PolynomialBasis &fluid_poly_, &solid_poly_;
   int hint_ = 0;
   std::vector<Range> frange_, srange_;
   std::vector<int> fluid_used_, solid_used_;
@@ -356,10 +358,17 @@ CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const M
   if (opt.method == CouplingOptions::Method::Quadrature && opt.qforder >= 0) total.rule_degree = opt.qforder;
 
   FluidGrid grid(fluid);
-  const int threads = std::max(1, std::min(opt.threads, 64));
+  const PolynomialBasis fluid_poly(fluid_space, fluid, total.fluid_degree, opt.fluid_components);
+  const PolynomialBasis solid_poly(multiplier, solid, total.solid_degree, opt.solid_components);
+  // Threads only where no evaluation goes back to the caller's Basis or map (they need not be thread-safe).
+  const bool parallel = fluid_poly.fitted() && solid_poly.fitted() && map.degree() >= 1;
+  const int threads = parallel ? std::max(1, std::min(opt.threads, 64)) : 1;
   std::vector<Worker> workers;
   workers.reserve(threads);
-  for (int t = 0; t < threads; ++t) workers.emplace_back(fluid, grid, fluid_space, solid, multiplier, map, opt, total);
+  for (int t = 0; t < threads; ++t)
+    workers.emplace_back(fluid, grid, fluid_space, fluid_poly, solid, multiplier, solid_poly, map, opt, total);
+  auto since = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  total.setup_seconds = since();
   // Contiguous shares in solid order, so that the sums come out in the same order for any thread count.
   auto share = [&](int t) { return first + static_cast<int>((static_cast<long long>(last - first) * t) / threads); };
   if (threads == 1) {
@@ -380,6 +389,7 @@ CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const M
       if (e) std::rethrow_exception(e);
   }
 
+  total.pieces_seconds = since() - total.setup_seconds;
   std::vector<std::vector<Triplet>> parts;
   for (auto& w : workers) {
     const CouplingReport& r = w.report_;
@@ -407,7 +417,7 @@ CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const M
     throw Error(msg);
   }
   CsrMatrix m = compress(multiplier.dof_count(), fluid_space.dof_count(), parts);
-  total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  total.seconds = since();
   if (report) *report = total;
   return m;
 }

@@ -24,7 +24,7 @@ struct CouplingOptions {
   bool drop_outside = false;    // allow the mapped solid to leave the fluid mesh, dropping that part
   double outside_tol = 1e-10;   // relative to the mapped solid area, before it is an error
   int first_solid = 0, last_solid = -1;  // assemble the solid triangles [first, last) only (-1: to the end)
-  int threads = 1;
+  int threads = 1;  // over solid triangles; used when the bases and the map are polynomial (fitted)
 };
 
 struct CouplingReport {
@@ -33,7 +33,7 @@ struct CouplingReport {
   int worst_triangle = -1;                  // the solid triangle with most area outside
   double worst_outside = 0;
   int fluid_degree = 0, solid_degree = 0, rule_degree = 0, curved_rule_degree = 0;
-  double seconds = 0;
+  double seconds = 0, setup_seconds = 0, pieces_seconds = 0;  // total; bases and grid; clipping and integration
   std::string summary() const;
 };
 

@@ -31,7 +31,19 @@ PolynomialBasis::PolynomialBasis(const Basis& basis, const Mesh& mesh, int degre
   reference_.resize(functions_.size() * nm_);
   fit(0, reference_.data());
   slot_.assign(mesh.size(), -1);
-  slot_[0] = -2;
+  inverse_jacobian_.resize(4 * static_cast<size_t>(mesh.size()));
+  for (int k = 0; k < mesh.size(); ++k) {
+    // d xi / d x for x = p0 + xi1 e1 + xi2 e2
+    Point p[3];
+    mesh_.corners(k, p);
+    const Point e1 = p[1] - p[0], e2 = p[2] - p[0];
+    const double det = cross(e1, e2);
+    double* j = &inverse_jacobian_[4 * static_cast<size_t>(k)];
+    j[0] = e2.y / det;
+    j[1] = -e2.x / det;
+    j[2] = -e1.y / det;
+    j[3] = e1.x / det;
+  }
   // Confirm the fit reproduces the basis (values and derivatives) off the lattice.
   double worst = 0, scale = 1e-300;
   for (Point t : {Point{0.137, 0.291}, Point{0.52, 0.083}}) {
@@ -43,7 +55,11 @@ PolynomialBasis::PolynomialBasis(const Basis& basis, const Mesh& mesh, int degre
         scale = std::max(scale, std::fabs(sample_[f * 3 + d]));
       }
   }
-  if (worst > 1e-9 * scale) degree_ = -1;
+  if (worst > 1e-9 * scale) {
+    degree_ = -1;
+    return;
+  }
+  for (int k = 1; k < mesh.size(); ++k) check(k);
 }
 
 void PolynomialBasis::fit(int k, double* c) {
@@ -62,46 +78,34 @@ void PolynomialBasis::fit(int k, double* c) {
     }
 }
 
-const double* PolynomialBasis::coefficients(int k) {
-  int& slot = slot_[k];
-  if (slot == -1) {
-    // One evaluation decides whether element k shares the reference fit.
-    double v[monomial_count(kMaxLatticeDegree)], d1[monomial_count(kMaxLatticeDegree)],
-        d2[monomial_count(kMaxLatticeDegree)];
-    monomials(degree_, kCheckPoint, v, d1, d2);
-    basis_.evaluate(k, kCheckPoint, sample_.data());
-    bool same = true;
-    for (size_t f = 0; f < functions_.size() && same; ++f) {
-      double s = 0, scale = 0;
-      for (int m = 0; m < nm_; ++m) {
-        s += reference_[f * nm_ + m] * v[m];
-        scale += std::fabs(reference_[f * nm_ + m] * v[m]);
-      }
-      same = std::fabs(s - sample_[functions_[f] * 3]) <= 1e-12 * (scale + 1);
+void PolynomialBasis::check(int k) {
+  // One evaluation decides whether element k shares the reference fit.
+  double v[monomial_count(kMaxLatticeDegree)], d1[monomial_count(kMaxLatticeDegree)], d2[monomial_count(kMaxLatticeDegree)];
+  monomials(degree_, kCheckPoint, v, d1, d2);
+  basis_.evaluate(k, kCheckPoint, sample_.data());
+  for (size_t f = 0; f < functions_.size(); ++f) {
+    double s = 0, scale = 0;
+    for (int m = 0; m < nm_; ++m) {
+      s += reference_[f * nm_ + m] * v[m];
+      scale += std::fabs(reference_[f * nm_ + m] * v[m]);
     }
-    if (same) {
-      slot = -2;
-    } else {
-      slot = static_cast<int>(own_.size());
+    if (std::fabs(s - sample_[functions_[f] * 3]) > 1e-12 * (scale + 1)) {
+      slot_[k] = static_cast<int>(own_.size());
       own_.resize(own_.size() + functions_.size() * nm_);
-      fit(k, &own_[slot]);
+      fit(k, &own_[slot_[k]]);
+      return;
     }
   }
-  return slot == -2 ? reference_.data() : &own_[slot];
 }
 
-void PolynomialBasis::evaluate(int k, Point xi, double* out) {
+void PolynomialBasis::evaluate(int k, Point xi, double* out) const {
   if (degree_ < 0) {
     basis_.evaluate(k, xi, out);
     return;
   }
   const double* coef = coefficients(k);
-  // d xi / d x for x = p0 + xi1 e1 + xi2 e2
-  Point p[3];
-  mesh_.corners(k, p);
-  const Point e1 = p[1] - p[0], e2 = p[2] - p[0];
-  const double det = cross(e1, e2);
-  const double j11 = e2.y / det, j12 = -e2.x / det, j21 = -e1.y / det, j22 = e1.x / det;
+  const double* j = &inverse_jacobian_[4 * static_cast<size_t>(k)];
+  const double j11 = j[0], j12 = j[1], j21 = j[2], j22 = j[3];
   double v[monomial_count(kMaxLatticeDegree)], d1[monomial_count(kMaxLatticeDegree)], d2[monomial_count(kMaxLatticeDegree)];
   monomials(degree_, xi, v, d1, d2);
   for (int f : functions_) {

@@ -3,7 +3,7 @@
 // evaluated by monomials, with physical derivatives through the element's affine map. Elements that are
 // affine-equivalent (P0, P1, P1b, P2, P1nc, ...) share one fit: each element is checked against it with a
 // single basis evaluation at a generic point, and fitted on its own only where it differs (e.g. where dof
-// orientation or sign depends on the element).
+// orientation or sign depends on the element). All elements are checked at construction.
 #pragma once
 #include <vector>
 
@@ -21,24 +21,27 @@ class PolynomialBasis {
   PolynomialBasis(const Basis& basis, const Mesh& mesh, int degree, const std::vector<int>& components);
 
   // Same layout as Basis::evaluate; only the listed components, on their dofs, are written.
-  void evaluate(int k, Point xi, double* out);
+  // Safe to call from several threads when fitted() (no call into the basis then).
+  void evaluate(int k, Point xi, double* out) const;
 
   bool fitted() const { return degree_ >= 0; }
   int degree() const { return degree_; }
   // The fitted functions, as dof * components + component.
   const std::vector<int>& functions() const { return functions_; }
   // Monomial coefficients (monomial_count(degree) per function, in functions() order) on element k.
-  const double* coefficients(int k);
+  const double* coefficients(int k) const { return slot_[k] < 0 ? reference_.data() : &own_[slot_[k]]; }
 
  private:
   void fit(int k, double* coefficients);
+  void check(int k);
   const Basis& basis_;
   const Mesh& mesh_;
   int degree_, nm_, nc_;
   std::vector<int> functions_;
   std::vector<double> reference_;  // the shared fit
-  std::vector<int> slot_;          // per element: -1 unchecked, -2 shared fit, else offset in own_
+  std::vector<int> slot_;          // per element: -1 shared fit, else offset in own_
   std::vector<double> own_;        // element fits that differ from the shared one
+  std::vector<double> inverse_jacobian_;  // per element: d xi / d x, 4 entries
   std::vector<double> sample_, check_;
 };
 
