@@ -343,8 +343,9 @@ CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const M
   check_options(fluid_space, multiplier, opt);
   if (static_cast<int>(fluid.neighbours.size()) != fluid.size()) throw Error("fluid mesh adjacency not built");
   if (fluid.size() == 0) throw Error("empty fluid mesh");
-  const int first = std::max(0, opt.first_solid);
-  const int last = opt.last_solid < 0 ? solid.size() : std::min(solid.size(), opt.last_solid);
+  if (opt.parts < 1 || opt.part < 0 || opt.part >= opt.parts) throw Error("part must lie in [0, parts)");
+  const int first = static_cast<int>(static_cast<long long>(solid.size()) * opt.part / opt.parts);
+  const int last = static_cast<int>(static_cast<long long>(solid.size()) * (opt.part + 1) / opt.parts);
 
   CouplingReport total;
   total.fluid_degree = polynomial_degree(fluid_space, opt.fluid_components);

@@ -23,7 +23,9 @@ struct CouplingOptions {
   int subdivide = -1;  // curved images: split each solid triangle into 4^subdivide straight ones; -1: auto (2)
   bool drop_outside = false;    // allow the mapped solid to leave the fluid mesh, dropping that part
   double outside_tol = 1e-10;   // relative to the mapped solid area, before it is an error
-  int first_solid = 0, last_solid = -1;  // assemble the solid triangles [first, last) only (-1: to the end)
+  // Assemble only share `part` of `parts` contiguous shares of the solid triangles (a distributed run sums
+  // the shares' matrices to the whole).
+  int part = 0, parts = 1;
   int threads = 1;  // over solid triangles; used when the bases and the map are polynomial (fitted)
 };
 

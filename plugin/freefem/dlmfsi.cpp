@@ -78,25 +78,25 @@ dlmfsi::Mesh convert(const Fem2D::Mesh& th) {
 class DlmfsiOp : public E_F0mps {
  public:
   typedef newpMatrice_Creuse<double> Result;
-  static const int n_name_param = 12;
+  static const int n_name_param = 13;
   static basicAC_F0::name_and_type name_param[n_name_param];
-  enum { kC1, kC2, kFluid, kSolid, kMethod, kGradient, kQforder, kTol, kSubdivide, kOutside, kOutsideTol, kThreads };
+  enum { kC1, kC2, kFluid, kSolid, kMethod, kGradient, kQforder, kTol, kSubdivide, kOutside, kOutsideTol, kThreads, kPart };
 
   Expression fluid_space, solid_space, map_x, map_y;
   Expression nargs[n_name_param];
-  // fluid=[..] / solid=[..] given as literal arrays: one expression per entry.
-  std::vector<Expression> fluid_list, solid_list;
+  // fluid=[..] / solid=[..] / part=[..] given as literal arrays: one expression per entry.
+  std::vector<Expression> fluid_list, solid_list, part_list;
 
   explicit DlmfsiOp(const basicAC_F0& args) {
     // A literal [0,1] arrives as E_Array, an int[int] variable as KN_<long>: declare what was given.
     basicAC_F0::name_and_type np[n_name_param];
     for (int i = 0; i < n_name_param; ++i) np[i] = name_param[i];
-    for (int i : {int(kFluid), int(kSolid)})
+    for (int i : {int(kFluid), int(kSolid), int(kPart)})
       if (args.find(np[i].name).left() == atype<E_Array>()) np[i].type = &typeid(E_Array);
     args.SetNameParam(n_name_param, np, nargs);
-    for (int i : {int(kFluid), int(kSolid)})
+    for (int i : {int(kFluid), int(kSolid), int(kPart)})
       if (const E_Array* a = dynamic_cast<const E_Array*>(nargs[i])) {
-        auto& list = i == kFluid ? fluid_list : solid_list;
+        auto& list = i == kFluid ? fluid_list : (i == kSolid ? solid_list : part_list);
         for (int e = 0; e < a->size(); ++e) list.push_back(to<long>((*a)[e]));
         nargs[i] = 0;
       }
@@ -120,14 +120,13 @@ class DlmfsiOp : public E_F0mps {
   std::string text(int i, Stack stack, const char* otherwise) const {
     return nargs[i] ? *GetAny<string*>((*nargs[i])(stack)) : std::string(otherwise);
   }
-  std::vector<int> components(int i, const std::vector<Expression>& list, Stack stack) const {
+  std::vector<int> integers(int i, const std::vector<Expression>& list, Stack stack) const {
     std::vector<int> out;
     for (Expression e : list) out.push_back(static_cast<int>(GetAny<long>((*e)(stack))));
     if (nargs[i]) {
       KN_<long> v = GetAny<KN_<long> >((*nargs[i])(stack));
       for (int k = 0; k < v.N(); ++k) out.push_back(static_cast<int>(v[k]));
     }
-    if (out.empty()) out.push_back(0);
     return out;
   }
   dlmfsi::CouplingOptions options(Stack stack) const;
@@ -137,15 +136,25 @@ basicAC_F0::name_and_type DlmfsiOp::name_param[n_name_param] = {
     {"c1", &typeid(double)},        {"c2", &typeid(double)},        {"fluid", &typeid(KN_<long>)},
     {"solid", &typeid(KN_<long>)},  {"method", &typeid(string*)},   {"gradient", &typeid(string*)},
     {"qforder", &typeid(long)},     {"tol", &typeid(double)},       {"subdivide", &typeid(long)},
-    {"outside", &typeid(string*)},  {"outsidetol", &typeid(double)}, {"threads", &typeid(long)}};
+    {"outside", &typeid(string*)},  {"outsidetol", &typeid(double)}, {"threads", &typeid(long)},
+    {"part", &typeid(KN_<long>)}};
 
 dlmfsi::CouplingOptions DlmfsiOp::options(Stack stack) const {
   using Options = dlmfsi::CouplingOptions;
   Options o;
   o.c1 = arg(kC1, stack, 1.0);
   o.c2 = arg(kC2, stack, 1.0);
-  o.fluid_components = components(kFluid, fluid_list, stack);
-  o.solid_components = components(kSolid, solid_list, stack);
+  o.fluid_components = integers(kFluid, fluid_list, stack);
+  o.solid_components = integers(kSolid, solid_list, stack);
+  if (o.fluid_components.empty()) o.fluid_components.push_back(0);
+  if (o.solid_components.empty()) o.solid_components.push_back(0);
+  const std::vector<int> part = integers(kPart, part_list, stack);
+  if (!part.empty()) {
+    if (part.size() != 2 || part[1] < 1 || part[0] < 0 || part[0] >= part[1])
+      throw dlmfsi::Error("part=[rank, size] needs 0 <= rank < size");
+    o.part = part[0];
+    o.parts = part[1];
+  }
   const std::string method = text(kMethod, stack, "exact");
   if (method == "exact")
     o.method = Options::Method::Exact;
