@@ -105,12 +105,19 @@ std::string name(int k) { return "solid triangle " + std::to_string(k); }
 void MappedTriangle::polynomial(Point xi, Point& x, Point& dx1, Point& dx2) const {
   double v[monomial_count(kMaxDegree)], d1[monomial_count(kMaxDegree)], d2[monomial_count(kMaxDegree)];
   monomials(degree_, xi, v, d1, d2);
-  x = dx1 = dx2 = {0, 0};
+  // Local sums: the outputs may alias memory the compiler cannot keep in registers.
+  double x0 = 0, x1 = 0, a0 = 0, a1 = 0, b0 = 0, b1 = 0;
   for (int m = 0; m < monomial_count(degree_); ++m) {
-    x = x + Point{cx_[m] * v[m], cy_[m] * v[m]};
-    dx1 = dx1 + Point{cx_[m] * d1[m], cy_[m] * d1[m]};
-    dx2 = dx2 + Point{cx_[m] * d2[m], cy_[m] * d2[m]};
+    x0 += cx_[m] * v[m];
+    x1 += cy_[m] * v[m];
+    a0 += cx_[m] * d1[m];
+    a1 += cy_[m] * d1[m];
+    b0 += cx_[m] * d2[m];
+    b1 += cy_[m] * d2[m];
   }
+  x = {x0, x1};
+  dx1 = {a0, a1};
+  dx2 = {b0, b1};
 }
 
 MapValue MappedTriangle::at(Point xi) const {
@@ -232,8 +239,10 @@ Point MappedTriangle::pull_back(Point y, MapValue& value) const {
     const Point step{(d * r.x - b * r.y) / det, (a * r.y - c * r.x) / det};
     xi = xi + step;
     const double size = std::fabs(step.x) + std::fabs(step.y);
-    // Converged, or stalled at the round-off floor (quadratic convergence would have halved the step).
-    if (size < 1e-14 || (size < 1e-10 && size > 0.5 * previous)) {
+    // Converged: the jacobian just computed is off by O(size) times the map's small nonlinearity.
+    if (size < 1e-12) return xi;
+    // Stalled at the round-off floor (quadratic convergence would have halved the step).
+    if (size < 1e-9 && size > 0.5 * previous) {
       value = at(xi);
       return xi;
     }

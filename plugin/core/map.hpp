@@ -69,7 +69,7 @@ class MappedTriangle {
   MapValue at(Point xi) const;
 
   // The reference point xi with X(xi) = y and the map there; for non-affine triangles Newton's method
-  // from the affine guess, stopping at |dxi| < 1e-14 or where the steps stall at the round-off floor.
+  // from the affine guess, stopping at |dxi| < 1e-12 or where the steps stall at the round-off floor.
   // Throws Error if it fails to converge or the jacobian determinant is not positive (a folded map).
   Point pull_back(Point y, MapValue& value) const;
 

@@ -227,8 +227,11 @@ AnyType DlmfsiOp::operator()(Stack stack) const {
 
 }  // namespace
 
+void dlmfsi_register_supermesh();  // plugin/freefem/supermesh.cpp
+
 static void Load_Init() {
   Global.Add("dlmfsi", "(", new OneOperatorCode<DlmfsiOp>);
+  dlmfsi_register_supermesh();
 }
 
 LOADFUNC(Load_Init)
