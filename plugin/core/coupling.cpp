@@ -111,8 +111,10 @@ class Worker {
       report_.worst_outside = outside;
       report_.worst_triangle = ks;
     }
+    // Entries never touched stay exactly zero (a multiplier component paired with another fluid component).
     for (int i : solid_used_)
-      for (size_t c = 0; c < columns_.size(); ++c) triplets.push_back({sdofs_[i], columns_[c], block_[c * ns_ + i]});
+      for (size_t c = 0; c < columns_.size(); ++c)
+        if (block_[c * ns_ + i] != 0.0) triplets.push_back({sdofs_[i], columns_[c], block_[c * ns_ + i]});
   }
 
   // Clips the (straight) image, or its straight sub-triangles, against the fluid; returns the area outside.
@@ -172,7 +174,7 @@ class Worker {
         const Point xi = mt.pull_back(y, mv);
         const double det = mt.affine ? mt.affine_det : det2(mv.jac);
         if (!(det > 0)) throw Error("the map folds solid triangle " + std::to_string(mt.k));
-        fluid_poly_.evaluate(kf, to_reference(kc, y), fvals_.data());
+        fluid_poly_.evaluate(kf, fluid_poly_.to_reference(kf, y), fvals_.data());
         solid_poly_.evaluate(mt.k, xi, svals_.data());
         accumulate(area * q.weight / det, mv.jac);
       }
@@ -220,7 +222,7 @@ class Worker {
         Point kc[3];
         fluid_.corners(kf, kc);
         fluid_columns(kf);
-        fluid_poly_.evaluate(kf, to_reference(kc, mv.x), fvals_.data());
+        fluid_poly_.evaluate(kf, fluid_poly_.to_reference(kf, mv.x), fvals_.data());
         solid_poly_.evaluate(mt.k, xi, svals_.data());
         accumulate(ds, mv.jac);
       }

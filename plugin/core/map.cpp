@@ -177,6 +177,33 @@ void MappedTriangle::prepare(const Mesh& solid_mesh, const SolidMap& map, int kk
   if (o == 0) throw Error("the map flattens " + name(k) + " (its image has zero area)");
   if (o < 0) throw Error("the map inverts " + name(k) + " (its image is clockwise: a reflection or a fold)");
 
+  {
+    const Point f1 = image[1] - image[0], f2 = image[2] - image[0];
+    const double di = cross(f1, f2);
+    image_inv_[0][0] = f2.y / di;
+    image_inv_[0][1] = -f2.x / di;
+    image_inv_[1][0] = -f1.y / di;
+    image_inv_[1][1] = f1.x / di;
+  }
+  if (degree_ == 1) {  // a P1 map: affine and straight by construction
+    straight = affine = true;
+  } else {
+    classify();
+  }
+  if (affine) {
+    // dX/ds = [image edges] [solid edges]^-1
+    const Point f1 = image[1] - image[0], f2 = image[2] - image[0];
+    affine_value.x = image[0];
+    affine_value.jac[0][0] = (f1.x * e2.y - f2.x * e1.y) / ds;
+    affine_value.jac[0][1] = (f2.x * e1.x - f1.x * e2.x) / ds;
+    affine_value.jac[1][0] = (f1.y * e2.y - f2.y * e1.y) / ds;
+    affine_value.jac[1][1] = (f2.y * e1.x - f1.y * e2.x) / ds;
+    affine_det = det2(affine_value.jac);
+    if (!(affine_det > 0)) throw Error("the map flattens " + name(k));
+  }
+}
+
+void MappedTriangle::classify() {
   // Compare X with the affine interpolant of the corner images at edge and interior points.
   // Round-off of the fit and of the map's own evaluation scales with the coordinates, not the triangle.
   const double scale = std::fabs(image[1].x - image[0].x) + std::fabs(image[1].y - image[0].y) +
@@ -206,21 +233,11 @@ void MappedTriangle::prepare(const Mesh& solid_mesh, const SolidMap& map, int kk
     const Point line = from_reference(image, p);
     if (std::fabs(x.x - line.x) + std::fabs(x.y - line.y) > tol) affine = false;
   }
-  if (affine) {
-    // dX/ds = [image edges] [solid edges]^-1
-    const Point f1 = image[1] - image[0], f2 = image[2] - image[0];
-    affine_value.x = image[0];
-    affine_value.jac[0][0] = (f1.x * e2.y - f2.x * e1.y) / ds;
-    affine_value.jac[0][1] = (f2.x * e1.x - f1.x * e2.x) / ds;
-    affine_value.jac[1][0] = (f1.y * e2.y - f2.y * e1.y) / ds;
-    affine_value.jac[1][1] = (f2.y * e1.x - f1.y * e2.x) / ds;
-    affine_det = det2(affine_value.jac);
-    if (!(affine_det > 0)) throw Error("the map flattens " + name(k));
-  }
 }
 
 Point MappedTriangle::pull_back(Point y, MapValue& value) const {
-  Point xi = to_reference(image, y);
+  const Point dy = y - image[0];
+  Point xi{image_inv_[0][0] * dy.x + image_inv_[0][1] * dy.y, image_inv_[1][0] * dy.x + image_inv_[1][1] * dy.y};
   if (affine) {
     value = affine_value;
     value.x = y;

@@ -74,12 +74,15 @@ class MappedTriangle {
   Point pull_back(Point y, MapValue& value) const;
 
  private:
+  // Sets affine and straight by sampling X at edge and interior points.
+  void classify();
   // value and reference-coordinate derivatives of the fitted polynomial
   void polynomial(Point xi, Point& x, Point& dx1, Point& dx2) const;
   const SolidMap* map_ = nullptr;
   int degree_ = -1;
   double cx_[(kMaxDegree + 1) * (kMaxDegree + 2) / 2], cy_[(kMaxDegree + 1) * (kMaxDegree + 2) / 2];  // monomial coefficients
-  double inv_[2][2];  // (d s / d xi)^-1
+  double inv_[2][2];        // (d s / d xi)^-1
+  double image_inv_[2][2];  // (d xi / d y) of the affine interpolant of the corner images
 };
 
 inline double det2(const double j[2][2]) { return j[0][0] * j[1][1] - j[0][1] * j[1][0]; }

@@ -23,14 +23,6 @@ PolynomialBasis::PolynomialBasis(const Basis& basis, const Mesh& mesh, int degre
   functions_.erase(std::unique(functions_.begin(), functions_.end()), functions_.end());
   sample_.resize(static_cast<size_t>(basis.local_dofs()) * nc_ * 3);
   check_.resize(sample_.size());
-  if (degree_ < 0 || mesh.size() == 0) {
-    degree_ = -1;
-    return;
-  }
-  nm_ = monomial_count(degree_);
-  reference_.resize(functions_.size() * nm_);
-  fit(0, reference_.data());
-  slot_.assign(mesh.size(), -1);
   inverse_jacobian_.resize(4 * static_cast<size_t>(mesh.size()));
   for (int k = 0; k < mesh.size(); ++k) {
     // d xi / d x for x = p0 + xi1 e1 + xi2 e2
@@ -44,6 +36,14 @@ PolynomialBasis::PolynomialBasis(const Basis& basis, const Mesh& mesh, int degre
     j[2] = -e1.y / det;
     j[3] = e1.x / det;
   }
+  if (degree_ < 0 || mesh.size() == 0) {
+    degree_ = -1;
+    return;
+  }
+  nm_ = monomial_count(degree_);
+  reference_.resize(functions_.size() * nm_);
+  fit(0, reference_.data());
+  slot_.assign(mesh.size(), -1);
   // Confirm the fit reproduces the basis (values and derivatives) off the lattice.
   double worst = 0, scale = 1e-300;
   for (Point t : {Point{0.137, 0.291}, Point{0.52, 0.083}}) {
@@ -98,6 +98,31 @@ void PolynomialBasis::check(int k) {
   }
 }
 
+Point PolynomialBasis::to_reference(int k, Point x) const {
+  const double* j = &inverse_jacobian_[4 * static_cast<size_t>(k)];
+  const Point d = x - mesh_.vertex(k, 0);
+  return {j[0] * d.x + j[1] * d.y, j[2] * d.x + j[3] * d.y};
+}
+
+template <int NM>
+void PolynomialBasis::evaluate_fitted(const double* coef, const double* j, const double* v, const double* d1,
+                                      const double* d2, double* out) const {
+  const int nm = NM > 0 ? NM : nm_;
+  for (int f : functions_) {
+    double val = 0, g1 = 0, g2 = 0;
+    for (int m = 0; m < nm; ++m) {
+      val += coef[m] * v[m];
+      g1 += coef[m] * d1[m];
+      g2 += coef[m] * d2[m];
+    }
+    coef += nm;
+    double* o = out + f * 3;
+    o[0] = val;
+    o[1] = g1 * j[0] + g2 * j[2];
+    o[2] = g1 * j[1] + g2 * j[3];
+  }
+}
+
 void PolynomialBasis::evaluate(int k, Point xi, double* out) const {
   if (degree_ < 0) {
     basis_.evaluate(k, xi, out);
@@ -105,21 +130,14 @@ void PolynomialBasis::evaluate(int k, Point xi, double* out) const {
   }
   const double* coef = coefficients(k);
   const double* j = &inverse_jacobian_[4 * static_cast<size_t>(k)];
-  const double j11 = j[0], j12 = j[1], j21 = j[2], j22 = j[3];
   double v[monomial_count(kMaxLatticeDegree)], d1[monomial_count(kMaxLatticeDegree)], d2[monomial_count(kMaxLatticeDegree)];
   monomials(degree_, xi, v, d1, d2);
-  for (int f : functions_) {
-    double val = 0, g1 = 0, g2 = 0;
-    for (int m = 0; m < nm_; ++m) {
-      val += coef[m] * v[m];
-      g1 += coef[m] * d1[m];
-      g2 += coef[m] * d2[m];
-    }
-    coef += nm_;
-    double* o = out + f * 3;
-    o[0] = val;
-    o[1] = g1 * j11 + g2 * j21;
-    o[2] = g1 * j12 + g2 * j22;
+  // Fixed trip counts for the common degrees let the compiler unroll the sums.
+  switch (degree_) {
+    case 1: evaluate_fitted<3>(coef, j, v, d1, d2, out); break;
+    case 2: evaluate_fitted<6>(coef, j, v, d1, d2, out); break;
+    case 3: evaluate_fitted<10>(coef, j, v, d1, d2, out); break;
+    default: evaluate_fitted<0>(coef, j, v, d1, d2, out); break;
   }
 }
 

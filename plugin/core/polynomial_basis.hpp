@@ -24,6 +24,9 @@ class PolynomialBasis {
   // Safe to call from several threads when fitted() (no call into the basis then).
   void evaluate(int k, Point xi, double* out) const;
 
+  // The reference coordinates of point x in element k (the inverse of the element's affine map).
+  Point to_reference(int k, Point x) const;
+
   bool fitted() const { return degree_ >= 0; }
   int degree() const { return degree_; }
   // The fitted functions, as dof * components + component.
@@ -34,6 +37,9 @@ class PolynomialBasis {
  private:
   void fit(int k, double* coefficients);
   void check(int k);
+  template <int NM>
+  void evaluate_fitted(const double* coef, const double* jac, const double* v, const double* d1, const double* d2,
+                       double* out) const;
   const Basis& basis_;
   const Mesh& mesh_;
   int degree_, nm_, nc_;
@@ -41,7 +47,7 @@ class PolynomialBasis {
   std::vector<double> reference_;  // the shared fit
   std::vector<int> slot_;          // per element: -1 shared fit, else offset in own_
   std::vector<double> own_;        // element fits that differ from the shared one
-  std::vector<double> inverse_jacobian_;  // per element: d xi / d x, 4 entries
+  std::vector<double> inverse_jacobian_;  // per element: d xi / d x, 4 entries (any basis: to_reference)
   std::vector<double> sample_, check_;
 };
 

@@ -46,15 +46,4 @@ int orient2d_exact(Point a, Point b, Point c) {
   return h[n - 1] > 0 ? 1 : -1;
 }
 
-int orient2d(Point a, Point b, Point c) {
-  const double left = (a.x - c.x) * (b.y - c.y);
-  const double right = (a.y - c.y) * (b.x - c.x);
-  const double det = left - right;
-  // Shewchuk's ccwerrboundA = (3 + 16 eps) eps with eps = 2^-53.
-  const double bound = 3.3306690738754716e-16 * (std::fabs(left) + std::fabs(right));
-  if (det > bound) return 1;
-  if (-det > bound) return -1;
-  return orient2d_exact(a, b, c);
-}
-
 }  // namespace dlmfsi

@@ -1,5 +1,7 @@
 // Exact geometric predicates.
 #pragma once
+#include <cmath>
+
 #include "point.hpp"
 
 namespace dlmfsi {
@@ -9,9 +11,20 @@ namespace dlmfsi {
 // (|coordinates| between about 1e-146 and 1e146): a floating-point filter decides the common case, and
 // near-degenerate cases (coincident points, a point on a line, collinear edges) are decided by an
 // exact expansion of ax*by - ay*bx + bx*cy - by*cx + cx*ay - cy*ax.
-int orient2d(Point a, Point b, Point c);
+inline int orient2d(Point a, Point b, Point c);
 
-// The same determinant evaluated exactly, without the floating-point filter (for tests).
+// The same determinant evaluated exactly, without the floating-point filter.
 int orient2d_exact(Point a, Point b, Point c);
+
+inline int orient2d(Point a, Point b, Point c) {
+  const double left = (a.x - c.x) * (b.y - c.y);
+  const double right = (a.y - c.y) * (b.x - c.x);
+  const double det = left - right;
+  // Shewchuk's ccwerrboundA = (3 + 16 eps) eps with eps = 2^-53.
+  const double bound = 3.3306690738754716e-16 * (std::fabs(left) + std::fabs(right));
+  if (det > bound) return 1;
+  if (-det > bound) return -1;
+  return orient2d_exact(a, b, c);
+}
 
 }  // namespace dlmfsi
