@@ -23,8 +23,10 @@ struct Supermesh {
 
   long pieces = 0;           // non-empty intersections A_k ∩ B_l (convex polygons)
   double area = 0;           // sum of the triangles' areas
-  int dropped = 0;           // fan triangles dropped as flat (repeated vertex or area2 <= 0 after rounding)
-  double dropped_area = 0;   // their absolute area in floating point (round-off size)
+  int collapsed = 0;         // fan triangles with two corners merged into one vertex (removed)
+  int dropped = 0;           // fan triangles with three vertices but flat or clockwise after merging (removed;
+                             // each may leave a pair of open edges: boundary edges of side -1)
+  double dropped_area = 0;   // the area of the collapsed and dropped triangles before merging (round-off size)
   int size() const { return static_cast<int>(triangles.size()); }
 };
 
@@ -35,8 +37,10 @@ struct Supermesh {
 // smallest triangle. Vertices with bit-identical coordinates are merged: clip() gives the vertices of a and
 // b exactly and every crossing of an edge of a with an edge of b with the same bits in all four pieces
 // around it, so for conforming a and b the pieces meet edge to edge and the result is conforming.
-// A fan triangle whose rounded corners are flat or clockwise (only for slivers near 1e-16 of the
-// coordinates) is dropped and counted in `dropped`.
+// Points within 1e-12 of the overlap's diameter are merged too (an edge of one mesh that passes through a
+// vertex of the other in real arithmetic, as grids of commensurate sizes do, leaves crossing points 1e-17
+// from that vertex): the fan triangles that collapse are removed (`collapsed`), and the rare one that
+// comes out flat or clockwise is dropped (`dropped`).
 // Triangles are ordered by the triangle of a, then by the search order in b.
 // Boundary edges are matched to the boundary edges of the parents geometrically: both ends within
 // 1e-10 of the parent edge's length from its line.

@@ -225,12 +225,39 @@ AnyType DlmfsiOp::operator()(Stack stack) const {
   return Nothing;
 }
 
+// dlmfsi on spaces that are not 2D (3D volume, surface or curve meshes): a catchable error at run time
+// rather than a compile error.
+template <class SpaceF, class SpaceS>
+class NotTwoD : public E_F0mps {
+ public:
+  typedef newpMatrice_Creuse<double> Result;
+  Expression nargs[DlmfsiOp::n_name_param];
+  explicit NotTwoD(const basicAC_F0& args) {
+    basicAC_F0::name_and_type np[DlmfsiOp::n_name_param];
+    for (int i = 0; i < DlmfsiOp::n_name_param; ++i) np[i] = DlmfsiOp::name_param[i];
+    for (int i = 0; i < DlmfsiOp::n_name_param; ++i)
+      if (args.find(np[i].name).left() == atype<E_Array>()) np[i].type = &typeid(E_Array);
+    args.SetNameParam(DlmfsiOp::n_name_param, np, nargs);
+  }
+  static ArrayOfaType typeargs() { return ArrayOfaType(atype<SpaceF>(), atype<SpaceS>(), atype<E_Array>()); }
+  static E_F0* f(const basicAC_F0& args) { return new NotTwoD(args); }
+  AnyType operator()(Stack) const {
+    ExecError("dlmfsi: the fluid and multiplier spaces must be 2D (fespace on a 2D mesh)");
+    return Nothing;
+  }
+};
+
 }  // namespace
 
 void dlmfsi_register_supermesh();  // plugin/freefem/supermesh.cpp
 
 static void Load_Init() {
   Global.Add("dlmfsi", "(", new OneOperatorCode<DlmfsiOp>);
+  Global.Add("dlmfsi", "(", new OneOperatorCode<NotTwoD<pfes3*, pfes3*> >);
+  Global.Add("dlmfsi", "(", new OneOperatorCode<NotTwoD<pfes*, pfes3*> >);
+  Global.Add("dlmfsi", "(", new OneOperatorCode<NotTwoD<pfes3*, pfes*> >);
+  Global.Add("dlmfsi", "(", new OneOperatorCode<NotTwoD<pfesS*, pfesS*> >);
+  Global.Add("dlmfsi", "(", new OneOperatorCode<NotTwoD<pfesL*, pfesL*> >);
   dlmfsi_register_supermesh();
 }
 

@@ -179,7 +179,8 @@ class SupermeshOp : public E_F0mps {
       const dlmfsi::Supermesh s = dlmfsi::build_supermesh(a, b);
       if (verbosity > 1)
         cout << "dlmfsisupermesh: " << s.pieces << " pieces, " << s.size() << " triangles, " << s.vertices.size()
-             << " vertices, area " << s.area << ", dropped " << s.dropped << " flat triangles (area " << s.dropped_area
+             << " vertices, area " << s.area << ", removed " << s.collapsed << " collapsed and " << s.dropped
+             << " flat triangles (area " << s.dropped_area
              << ")" << endl;
       if (s.size() == 0) throw dlmfsi::Error("supermesh: the meshes do not overlap (empty intersection)");
       Fem2D::Mesh* m = to_freefem(s, *tha, *thb);
