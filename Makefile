@@ -3,6 +3,7 @@
 BUILD ?= build
 JOBS ?= 2
 OUT ?= results
+QUICK ?= 0
 FF := bin/ff
 
 .PHONY: all deps build test compare bench evidence sanitize clean
@@ -25,6 +26,11 @@ compare: build
 	@mkdir -p $(OUT)
 	DLMFSI_BUILD=$(abspath $(BUILD)) $(FF) edp/compare_coupling.edp -out $(OUT)
 	@if [ -f scripts/compare-scenes ]; then DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(OUT) scripts/compare-scenes; fi
+
+# Assembly speed over a sweep of sizes (built-in vs dlmfsi, threads, cost per piece, peak memory):
+# CSV + PNG under $(OUT)/bench. QUICK=1 for tiny sizes.
+bench: build
+	DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) QUICK=$(QUICK) scripts/bench
 
 # AddressSanitizer + UndefinedBehaviorSanitizer build of the core, running the unit tests.
 sanitize: deps
