@@ -313,6 +313,15 @@ class Worker {
   std::vector<int> fdofs_, sdofs_, fcol_, columns_;
 };
 
+// Components named on one side must exist in that side's space.
+void check_components(const Basis& basis, const std::vector<int>& components, const std::string& side,
+                      const std::string& space) {
+  for (int c : components)
+    if (c < 0 || c >= basis.components())
+      throw Error(side + " component " + std::to_string(c) + " out of range (the " + space + " has " +
+                  std::to_string(basis.components()) + ")");
+}
+
 void check_options(const Basis& fluid_space, const Basis& multiplier, const CouplingOptions& opt) {
   const auto& f = opt.fluid_components;
   const auto& s = opt.solid_components;
@@ -320,14 +329,8 @@ void check_options(const Basis& fluid_space, const Basis& multiplier, const Coup
     throw Error("fluid and solid component lists differ in length (" + std::to_string(f.size()) + " and " +
                 std::to_string(s.size()) + ")");
   if (f.empty()) throw Error("no components to couple");
-  for (int c : f)
-    if (c < 0 || c >= fluid_space.components())
-      throw Error("fluid component " + std::to_string(c) + " out of range (the fluid space has " +
-                  std::to_string(fluid_space.components()) + ")");
-  for (int c : s)
-    if (c < 0 || c >= multiplier.components())
-      throw Error("solid component " + std::to_string(c) + " out of range (the multiplier space has " +
-                  std::to_string(multiplier.components()) + ")");
+  check_components(fluid_space, f, "fluid", "fluid space");
+  check_components(multiplier, s, "solid", "multiplier space");
   if (opt.gradient == CouplingOptions::Gradient::Listing && f.size() != 2)
     throw Error("gradient=\"listing\" needs exactly two component pairs (a 2D vector field)");
   if (!std::isfinite(opt.c1) || !std::isfinite(opt.c2)) throw Error("c1 and c2 must be finite");
@@ -337,20 +340,39 @@ void check_options(const Basis& fluid_space, const Basis& multiplier, const Coup
   if (opt.subdivide > 8) throw Error("subdivide above 8");
 }
 
+Mesh checked(Mesh mesh) {
+  if (mesh.size() == 0) throw Error("empty fluid mesh");
+  if (static_cast<int>(mesh.neighbours.size()) != mesh.size()) throw Error("fluid mesh adjacency not built");
+  return mesh;
+}
+
 }  // namespace
+
+FluidSide::FluidSide(Mesh mesh, const Basis& space, const std::vector<int>& components)
+    : mesh_(checked(std::move(mesh))), space_(space), components_(components),
+      degree_((check_components(space, components, "fluid", "fluid space"), polynomial_degree(space, components))), grid_(mesh_),
+      basis_(space, mesh_, degree_, components) {}
 
 CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const Mesh& solid, const Basis& multiplier,
                             const SolidMap& map, const CouplingOptions& opt, CouplingReport* report) {
-  const auto start = std::chrono::steady_clock::now();
   check_options(fluid_space, multiplier, opt);
-  if (static_cast<int>(fluid.neighbours.size()) != fluid.size()) throw Error("fluid mesh adjacency not built");
-  if (fluid.size() == 0) throw Error("empty fluid mesh");
+  const FluidSide side(fluid, fluid_space, opt.fluid_components);
+  return assemble_coupling(side, solid, multiplier, map, opt, report);
+}
+
+CsrMatrix assemble_coupling(const FluidSide& side, const Mesh& solid, const Basis& multiplier, const SolidMap& map,
+                            const CouplingOptions& opt, CouplingReport* report) {
+  const auto start = std::chrono::steady_clock::now();
+  const Mesh& fluid = side.mesh();
+  const Basis& fluid_space = side.space();
+  check_options(fluid_space, multiplier, opt);
+  if (opt.fluid_components != side.components()) throw Error("the fluid side was prepared for other components");
   if (opt.parts < 1 || opt.part < 0 || opt.part >= opt.parts) throw Error("part must lie in [0, parts)");
   const int first = static_cast<int>(static_cast<long long>(solid.size()) * opt.part / opt.parts);
   const int last = static_cast<int>(static_cast<long long>(solid.size()) * (opt.part + 1) / opt.parts);
 
   CouplingReport total;
-  total.fluid_degree = polynomial_degree(fluid_space, opt.fluid_components);
+  total.fluid_degree = side.degree();
   total.solid_degree = polynomial_degree(multiplier, opt.solid_components);
   // Exact for the product of the two bases (affine maps); 10 when an element is not polynomial.
   const int product = (total.fluid_degree < 0 || total.solid_degree < 0)
@@ -360,8 +382,8 @@ CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const M
   total.curved_rule_degree = opt.qforder >= 0 ? opt.qforder : std::min(60, product + 2);
   if (opt.method == CouplingOptions::Method::Quadrature && opt.qforder >= 0) total.rule_degree = opt.qforder;
 
-  FluidGrid grid(fluid);
-  const PolynomialBasis fluid_poly(fluid_space, fluid, total.fluid_degree, opt.fluid_components);
+  const FluidGrid& grid = side.grid();
+  const PolynomialBasis& fluid_poly = side.basis();
   const PolynomialBasis solid_poly(multiplier, solid, total.solid_degree, opt.solid_components);
   // Threads only where no evaluation goes back to the caller's Basis or map (they need not be thread-safe).
   const bool parallel = fluid_poly.fitted() && solid_poly.fitted() && map.degree() >= 1;

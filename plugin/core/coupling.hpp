@@ -4,8 +4,10 @@
 #include <vector>
 
 #include "basis.hpp"
+#include "fluid_search.hpp"
 #include "map.hpp"
 #include "mesh.hpp"
+#include "polynomial_basis.hpp"
 #include "sparse.hpp"
 
 namespace dlmfsi {
@@ -39,6 +41,30 @@ struct CouplingReport {
   std::string summary() const;
 };
 
+// The fluid side of the coupling: the mesh (with adjacency), its search grid and its basis fitted on the
+// coupled components. Built once and reused for every map while the fluid mesh and space stay the same
+// (a time loop on a fixed fluid mesh).
+class FluidSide {
+ public:
+  FluidSide(Mesh mesh, const Basis& space, const std::vector<int>& components);
+  FluidSide(const FluidSide&) = delete;
+  FluidSide& operator=(const FluidSide&) = delete;
+  const Mesh& mesh() const { return mesh_; }
+  const Basis& space() const { return space_; }
+  const std::vector<int>& components() const { return components_; }
+  int degree() const { return degree_; }
+  const FluidGrid& grid() const { return grid_; }
+  const PolynomialBasis& basis() const { return basis_; }
+
+ private:
+  Mesh mesh_;
+  const Basis& space_;
+  std::vector<int> components_;
+  int degree_;
+  FluidGrid grid_;
+  PolynomialBasis basis_;
+};
+
 // B_ij = int_{solid} c1 grad_s psi_i : grad_s (phi_j o X) + c2 psi_i . (phi_j o X) ds,
 // psi_i the multiplier basis (rows: multiplier dofs), phi_j the fluid basis (columns: fluid dofs),
 // summed over the paired components.
@@ -55,6 +81,11 @@ struct CouplingReport {
 // sub-triangle's corners do not share one fluid triangle, down to tol of its area; the true map at every point.
 // Errors (Error): bad options or components, non-finite/inverted/flat map, a mapped solid outside the
 // fluid mesh by more than outside_tol (unless drop_outside).
+// options.fluid_components must be the fluid side's components.
+CsrMatrix assemble_coupling(const FluidSide& fluid, const Mesh& solid, const Basis& multiplier, const SolidMap& map,
+                            const CouplingOptions& options, CouplingReport* report = nullptr);
+
+// The same, preparing the fluid side for this one call.
 CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const Mesh& solid, const Basis& multiplier,
                             const SolidMap& map, const CouplingOptions& options, CouplingReport* report = nullptr);
 

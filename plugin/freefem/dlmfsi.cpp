@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <exception>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -73,6 +74,34 @@ dlmfsi::Mesh convert(const Fem2D::Mesh& th) {
     }
   m.check();
   return m;
+}
+
+// The fluid side (mesh, search grid, fitted basis) of the last call, reused while the fluid space and the
+// coupled components stay the same: a time loop on a fixed fluid mesh prepares it once. FreeFEM gives
+// every FESpace a unique id that is never reused, so a space rebuilt on a new mesh is never mistaken for
+// the cached one.
+struct FluidCache {
+  const FESpace* space = nullptr;
+  UniqueffId id;
+  std::vector<int> components;
+  std::unique_ptr<SpaceBasis> basis;
+  std::unique_ptr<dlmfsi::FluidSide> side;
+
+  const dlmfsi::FluidSide& get(const FESpace& vf, const std::vector<int>& comps) {
+    if (side && space == &vf && id == vf && components == comps) return *side;
+    side.reset();
+    basis.reset(new SpaceBasis(vf));
+    side.reset(new dlmfsi::FluidSide(convert(vf.Th), *basis, comps));
+    space = &vf;
+    id = vf;
+    components = comps;
+    return *side;
+  }
+};
+
+FluidCache& fluid_cache() {
+  static FluidCache* cache = new FluidCache;  // never destroyed: FreeFEM tears its spaces down first
+  return *cache;
 }
 
 class DlmfsiOp : public E_F0mps {
@@ -200,12 +229,12 @@ AnyType DlmfsiOp::operator()(Stack stack) const {
     const KN<double>& cx = *px.first->x();
     const KN<double>& cy = *py.first->x();
 
-    const dlmfsi::Mesh fluid = convert(vf->Th);
+    const dlmfsi::FluidSide& fluid = fluid_cache().get(*vf, opt.fluid_components);
     const dlmfsi::Mesh solid = convert(vs->Th);
-    const SpaceBasis fluid_basis(*vf), multiplier(*vs), map_x_basis(sx), map_y_basis(sy);
+    const SpaceBasis multiplier(*vs), map_x_basis(sx), map_y_basis(sy);
     const dlmfsi::FieldMap map(solid, map_x_basis, &cx[0], px.second, map_y_basis, &cy[0], py.second);
     dlmfsi::CouplingReport report;
-    const dlmfsi::CsrMatrix b = dlmfsi::assemble_coupling(fluid, fluid_basis, solid, multiplier, map, opt, &report);
+    const dlmfsi::CsrMatrix b = dlmfsi::assemble_coupling(fluid, solid, multiplier, map, opt, &report);
     if (verbosity > 1) cout << report.summary() << endl;
     if (opt.drop_outside && report.outside_area > 0 && verbosity > 0)
       cout << "dlmfsi: dropped area outside the fluid mesh " << report.outside_area << " (solid triangle "
