@@ -24,21 +24,16 @@ Point crossing(Point p, Point q, Point r, Point s) {
   // p + t (q - p) with t = cross(r - p, s - r) / cross(q - p, s - r), clamped to the segment.
   const Point d = q - p, e = s - r;
   double t = cross(r - p, e) / cross(d, e);
-  t = std::min(1.0, std::max(0.0, t));
-  return {p.x + t * d.x, p.y + t * d.y};
+  t = std::min(1.0, std::max(0.0, t));  // also maps NaN (parallel in floating point) to 0
+  // The crossing lies on both segments, so in both bounding boxes. For nearly parallel, nearly collinear
+  // segments t is ill-conditioned and p + t d can land anywhere on [p, q], far outside [r, s] (seen with
+  // collinear overlapping edges perturbed by one rounding: a piece grew by 9% of its area); clamped to the
+  // boxes' intersection the point stays in the overlap, within round-off of both lines.
+  const double x = p.x + t * d.x, y = p.y + t * d.y;
+  const double lx = std::max(std::min(p.x, q.x), std::min(r.x, s.x)), hx = std::min(std::max(p.x, q.x), std::max(r.x, s.x));
+  const double ly = std::max(std::min(p.y, q.y), std::min(r.y, s.y)), hy = std::min(std::max(p.y, q.y), std::max(r.y, s.y));
+  return {std::min(hx, std::max(lx, x)), std::min(hy, std::max(ly, y))};
 }
-
-namespace {
-
-// A monotone stand-in for the angle of d (in [0, 4)), cheaper than atan2.
-double pseudo_angle(Point d) {
-  const double s = std::fabs(d.x) + std::fabs(d.y);
-  if (s == 0) return 0;
-  const double p = d.x / s;  // in [-1, 1], decreasing with the angle on the upper half
-  return d.y >= 0 ? 1 - p : 3 + p;
-}
-
-}  // namespace
 
 Piece clip(const Point a[3], const Point b[3]) {
   Piece out;
@@ -79,17 +74,27 @@ Piece clip(const Point a[3], const Point b[3]) {
   }
   if (n < 3) return out;  // cannot happen when the interiors meet; kept as a guard
 
-  // The candidates are the vertices of a convex polygon: order them by angle about their mean.
+  // The candidates are the vertices of a convex polygon: order them by angle about their mean c, with
+  // exact comparisons. The directions seen from c are split into the half-turns [0, 180) and [180, 360)
+  // degrees; within one, "q left of c -> p" is a strict weak order. Floating-point angles (the former
+  // pseudo-angle keys) misordered thin pieces whose vertices lie nearly on one ray from c, giving pieces
+  // that did not wind once; exact comparisons of the actual doubles cannot, while c is inside.
   Point c{0, 0};
   for (int k = 0; k < n; ++k) c = c + cand[k];
   c = (1.0 / n) * c;
-  double key[12];
-  for (int k = 0; k < n; ++k) key[k] = pseudo_angle(cand[k] - c);
+  auto half = [c](Point p) {
+    if (p == c) return 0;
+    return p.y > c.y || (p.y == c.y && p.x > c.x) ? 1 : 2;
+  };
+  auto before = [c, &half](Point p, Point q) {
+    const int hp = half(p), hq = half(q);
+    if (hp != hq) return hp < hq;
+    if (hp == 0) return false;
+    const int o = orient2d(c, p, q);
+    return o > 0 || (o == 0 && lex_less(p, q));
+  };
   for (int k = 1; k < n; ++k)
-    for (int m = k; m > 0 && key[m] < key[m - 1]; --m) {
-      std::swap(key[m], key[m - 1]);
-      std::swap(cand[m], cand[m - 1]);
-    }
+    for (int m = k; m > 0 && before(cand[m], cand[m - 1]); --m) std::swap(cand[m], cand[m - 1]);
   out.n = std::min(n, Piece::kMaxVertices);
   for (int k = 0; k < out.n; ++k) out.v[k] = cand[k];
   return out;

@@ -64,7 +64,7 @@ class Worker {
     report_.fluid_degree = degrees.fluid_degree;
     report_.solid_degree = degrees.solid_degree;
     report_.rule_degree = degrees.rule_degree;
-    report_.curved_rule_degree = degrees.curved_rule_degree;
+    report_.curved_rule_degree = 0;
     const size_t np = opt.fluid_components.size();
     for (size_t p = 0; p < np; ++p) {
       Range f, s;
@@ -117,10 +117,24 @@ class Worker {
         if (block_[c * ns_ + i] != 0.0) triplets.push_back({sdofs_[i], columns_[c], block_[c * ns_ + i]});
   }
 
+  // The rule for triangle mt: exact for the product's degree p when the map is affine there. Otherwise the
+  // integrand in fluid coordinates is f(X^-1(y)) / det grad X, a series in the map's nonlinearity d whose
+  // k-th term is a polynomial of degree about p + 2k: degree p + 2k leaves O(d^(k+1)), and k is chosen so
+  // that d^(k+1) < 1e-12 (qforder overrides).
+  int rule_degree(const MappedTriangle& mt) {
+    if (mt.affine) return report_.rule_degree;
+    if (opt_.qforder >= 0) return opt_.qforder;
+    const double d = std::min(std::max(mt.nonlinearity, 1e-300), 0.5);
+    const int k = std::min(8, std::max(1, static_cast<int>(std::ceil(12.0 / -std::log10(d))) - 1));
+    const int degree = std::min(60, report_.rule_degree + 2 * k);
+    report_.curved_rule_degree = std::max(report_.curved_rule_degree, degree);
+    return degree;
+  }
+
   // Clips the (straight) image, or its straight sub-triangles, against the fluid; returns the area outside.
   double exact(const MappedTriangle& mt) {
     double outside = 0;
-    const int degree = mt.affine ? report_.rule_degree : report_.curved_rule_degree;
+    const int degree = rule_degree(mt);
     auto clip_image = [&](const Point img[3]) {
       const int o = orient2d(img[0], img[1], img[2]);
       if (o <= 0) throw Error("the map folds solid triangle " + std::to_string(mt.k) + " (a sub-triangle's image is " +
@@ -190,7 +204,7 @@ class Worker {
     const int max_depth =
         std::min(12, std::max(0, static_cast<int>(std::ceil(std::log(1 / std::max(opt_.tol, 1e-300)) / std::log(4.0)))));
     const double solid_jacobian = area2(mt.solid[0], mt.solid[1], mt.solid[2]);  // ds = this * dxi
-    const auto& rule = triangle_rule(mt.affine ? report_.rule_degree : report_.curved_rule_degree);
+    const auto& rule = triangle_rule(opt_.qforder >= 0 ? opt_.qforder : rule_degree(mt));
     double outside = 0;
     std::vector<Sub> stack{{{{0, 0}, {1, 0}, {0, 1}}, {mt.image[0], mt.image[1], mt.image[2]}, 0}};
     auto image_of = [&](Point xi) { return mt.affine ? from_reference(mt.image, xi) : mt.at(xi).x; };
@@ -379,7 +393,6 @@ CsrMatrix assemble_coupling(const FluidSide& side, const Mesh& solid, const Basi
                           ? 10
                           : std::max(0, total.fluid_degree + total.solid_degree - (opt.c2 == 0 ? 2 : 0));
   total.rule_degree = product;
-  total.curved_rule_degree = opt.qforder >= 0 ? opt.qforder : std::min(60, product + 2);
   if (opt.method == CouplingOptions::Method::Quadrature && opt.qforder >= 0) total.rule_degree = opt.qforder;
 
   const FluidGrid& grid = side.grid();
@@ -424,6 +437,7 @@ CsrMatrix assemble_coupling(const FluidSide& side, const Mesh& solid, const Basi
     total.affine += r.affine;
     total.straight += r.straight;
     total.curved += r.curved;
+    total.curved_rule_degree = std::max(total.curved_rule_degree, r.curved_rule_degree);
     total.image_area += r.image_area;
     total.outside_area += r.outside_area;
     if (r.worst_outside > total.worst_outside) {

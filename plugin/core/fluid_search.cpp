@@ -22,8 +22,9 @@ FluidGrid::FluidGrid(const Mesh& fluid) : fluid_(fluid) {
     }
   const double w = std::max(hi_.x - lo_.x, 1e-300), h = std::max(hi_.y - lo_.y, 1e-300);
   // About one triangle per cell, cells roughly square.
-  nx_ = std::max(1, std::min(4096, static_cast<int>(std::sqrt(nt * w / h))));
-  ny_ = std::max(1, std::min(4096, static_cast<int>(std::sqrt(nt * h / w))));
+  // (clamped as doubles: converting a double beyond the int range is undefined behaviour)
+  nx_ = static_cast<int>(std::max(1.0, std::min(4096.0, std::sqrt(nt * w / h))));
+  ny_ = static_cast<int>(std::max(1.0, std::min(4096.0, std::sqrt(nt * h / w))));
   inv_dx_ = nx_ / w;
   inv_dy_ = ny_ / h;
   std::vector<int> count(static_cast<size_t>(nx_) * ny_ + 1, 0);
@@ -47,8 +48,10 @@ FluidGrid::FluidGrid(const Mesh& fluid) : fluid_(fluid) {
 
 bool FluidGrid::cells_of(Point lo, Point hi, int& i0, int& j0, int& i1, int& j1) const {
   if (fluid_.size() == 0 || hi.x < lo_.x || hi.y < lo_.y || lo.x > hi_.x || lo.y > hi_.y) return false;
+  // Clamped before the conversion to int: a far (finite) triangle gives values beyond the int range,
+  // whose conversion is undefined behaviour (UBSan: float-cast-overflow).
   auto cell = [](double v, double origin, double inv, int n) {
-    return std::max(0, std::min(n - 1, static_cast<int>(std::floor((v - origin) * inv))));
+    return static_cast<int>(std::max(0.0, std::min(static_cast<double>(n - 1), std::floor((v - origin) * inv))));
   };
   i0 = cell(lo.x, lo_.x, inv_dx_, nx_);
   i1 = cell(hi.x, lo_.x, inv_dx_, nx_);

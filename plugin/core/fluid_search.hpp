@@ -48,7 +48,8 @@ class FluidSearch {
   // Calls visit(k, piece) once for every fluid triangle k whose interior meets the interior of the
   // counter-clockwise triangle t, with piece = t ∩ k. Advancing front: from the triangle holding t's
   // centroid, across fluid edges while pieces are non-empty (the triangles meeting a convex set are
-  // edge-connected through such triangles); the grid when the centroid is outside the fluid mesh.
+  // edge-connected through such triangles); the grid when the centroid is outside the fluid mesh, and
+  // after the walk when a visited triangle has a boundary edge (t may re-enter a non-convex mesh).
   // hint: where the walk starts, updated to a triangle near t.
   template <class Visit>
   void for_each_piece(const Point t[3], int& hint, Visit&& visit);
@@ -83,6 +84,7 @@ void FluidSearch::for_each_piece(const Point t[3], int& hint, Visit&& visit) {
       queue_.clear();
       queue_.push_back(start);
       mark(start);
+      bool at_boundary = false;
       for (std::size_t q = 0; q < queue_.size(); ++q) {
         const int k = queue_[q];
         Piece piece = first;
@@ -92,13 +94,19 @@ void FluidSearch::for_each_piece(const Point t[3], int& hint, Visit&& visit) {
           if (piece.n == 0) continue;
         }
         visit(k, piece);
-        for (int nb : fluid_.neighbours[k])
-          if (nb >= 0 && mark(nb)) queue_.push_back(nb);
+        for (int nb : fluid_.neighbours[k]) {
+          if (nb < 0) at_boundary = true;
+          else if (mark(nb)) queue_.push_back(nb);
+        }
       }
-      return;
+      // The walk reached every piece unless t leaves the fluid mesh through the boundary of a visited
+      // triangle: on a non-convex mesh (a notch, a hole) t may come back in elsewhere, and the part of t
+      // inside is then disconnected. The grid finds the other parts (the marks skip what the walk tested).
+      if (!at_boundary) return;
     }
   }
-  // The centroid is outside the fluid mesh (or its triangle misses a sliver t): test the grid's candidates.
+  // The centroid is outside the fluid mesh (or its triangle misses a sliver t), or t may leave and re-enter
+  // the mesh: test the grid's candidates.
   Point lo{std::min({t[0].x, t[1].x, t[2].x}), std::min({t[0].y, t[1].y, t[2].y})};
   Point hi{std::max({t[0].x, t[1].x, t[2].x}), std::max({t[0].y, t[1].y, t[2].y})};
   grid_.for_each_in_box(lo, hi, [&](int k) {

@@ -187,6 +187,7 @@ void MappedTriangle::prepare(const Mesh& solid_mesh, const SolidMap& map, int kk
   }
   if (degree_ == 1) {  // a P1 map: affine and straight by construction
     straight = affine = true;
+    nonlinearity = 0;
   } else {
     classify();
   }
@@ -215,6 +216,7 @@ void MappedTriangle::classify() {
   const Point inner_points[3] = {{1.0 / 3, 1.0 / 3}, {0.2, 0.6}, {0.6, 0.15}};
   straight = true;
   affine = true;
+  nonlinearity = 0;
   for (int e = 0; e < 6; ++e) {
     const Point x = at(edge_points[e]).x;
     if (!finite(x)) throw Error("the map is NaN or Inf inside " + name(k));
@@ -225,13 +227,17 @@ void MappedTriangle::classify() {
     const Point ab = b - a;
     const double off = std::fabs(cross(ab, x - a)) / std::sqrt(ab.x * ab.x + ab.y * ab.y);
     if (off > tol) straight = false;
-    if (std::fabs(x.x - line.x) + std::fabs(x.y - line.y) > tol) affine = false;
+    const double dev = std::fabs(x.x - line.x) + std::fabs(x.y - line.y);
+    if (dev > tol) affine = false;
+    nonlinearity = std::max(nonlinearity, dev / scale);
   }
   for (const Point& p : inner_points) {
     const Point x = at(p).x;
     if (!finite(x)) throw Error("the map is NaN or Inf inside " + name(k));
     const Point line = from_reference(image, p);
-    if (std::fabs(x.x - line.x) + std::fabs(x.y - line.y) > tol) affine = false;
+    const double dev = std::fabs(x.x - line.x) + std::fabs(x.y - line.y);
+    if (dev > tol) affine = false;
+    nonlinearity = std::max(nonlinearity, dev / scale);
   }
 }
 

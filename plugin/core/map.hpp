@@ -58,6 +58,7 @@ class MappedTriangle {
   Point image[3];    // X at the corners
   bool affine = false;    // X agrees with the affine interpolant of the corner images (to round-off)
   bool straight = false;  // the image's edges are straight segments (e.g. P1b: the bubble vanishes on edges)
+  double nonlinearity = 0;  // max |X - affine interpolant of the corners| / image size, at the sample points
   MapValue affine_value;  // for affine triangles: X at the first corner and the constant jacobian
   double affine_det = 0;  // det of that jacobian (> 0)
 
