@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "convert.hpp"
 #include "coupling.hpp"
 #include "errors.hpp"
 
@@ -58,24 +59,6 @@ class SpaceBasis : public dlmfsi::Basis {
   int nd_, nc_;
 };
 
-// Vertices, triangles and FreeFEM's own adjacency.
-dlmfsi::Mesh convert(const Fem2D::Mesh& th) {
-  dlmfsi::Mesh m;
-  m.vertices.resize(th.nv);
-  for (int v = 0; v < th.nv; ++v) m.vertices[v] = {th(v).x, th(v).y};
-  m.triangles.resize(th.nt);
-  m.neighbours.resize(th.nt);
-  for (int k = 0; k < th.nt; ++k)
-    for (int i = 0; i < 3; ++i) {
-      m.triangles[k][i] = th(k, i);
-      int j = i;
-      const int kk = th.ElementAdj(k, j);
-      m.neighbours[k][i] = (kk < 0 || kk == k) ? -1 : kk;
-    }
-  m.check();
-  return m;
-}
-
 // The fluid side (mesh, search grid, fitted basis) of the last call, reused while the fluid space and the
 // coupled components stay the same: a time loop on a fixed fluid mesh prepares it once. FreeFEM gives
 // every FESpace a unique id that is never reused, so a space rebuilt on a new mesh is never mistaken for
@@ -91,7 +74,7 @@ struct FluidCache {
     if (side && space == &vf && id == vf && components == comps) return *side;
     side.reset();
     basis.reset(new SpaceBasis(vf));
-    side.reset(new dlmfsi::FluidSide(convert(vf.Th), *basis, comps));
+    side.reset(new dlmfsi::FluidSide(dlmfsi_ff::convert(vf.Th), *basis, comps));
     space = &vf;
     id = vf;
     components = comps;
@@ -230,7 +213,7 @@ AnyType DlmfsiOp::operator()(Stack stack) const {
     const KN<double>& cy = *py.first->x();
 
     const dlmfsi::FluidSide& fluid = fluid_cache().get(*vf, opt.fluid_components);
-    const dlmfsi::Mesh solid = convert(vs->Th);
+    const dlmfsi::Mesh solid = dlmfsi_ff::convert(vs->Th);
     const SpaceBasis multiplier(*vs), map_x_basis(sx), map_y_basis(sy);
     const dlmfsi::FieldMap map(solid, map_x_basis, &cx[0], px.second, map_y_basis, &cy[0], py.second);
     dlmfsi::CouplingReport report;

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "convert.hpp"
 #include "errors.hpp"
 #include "supermesh.hpp"
 
@@ -25,23 +26,6 @@ void dlmfsi_register_supermesh();
 namespace {
 
 // Vertices, triangles and FreeFEM's own adjacency (the same conversion as dlmfsi.cpp's).
-dlmfsi::Mesh convert_mesh(const Fem2D::Mesh& th) {
-  dlmfsi::Mesh m;
-  m.vertices.resize(th.nv);
-  for (int v = 0; v < th.nv; ++v) m.vertices[v] = {th(v).x, th(v).y};
-  m.triangles.resize(th.nt);
-  m.neighbours.resize(th.nt);
-  for (int k = 0; k < th.nt; ++k)
-    for (int i = 0; i < 3; ++i) {
-      m.triangles[k][i] = th(k, i);
-      int j = i;
-      const int kk = th.ElementAdj(k, j);
-      m.neighbours[k][i] = (kk < 0 || kk == k) ? -1 : kk;
-    }
-  m.check();
-  return m;
-}
-
 // Values of FE function component `comp` (coefficients c, space vh) at reference points of triangle k.
 void fe_values(const FESpace& vh, const KN<double>& c, int comp, int k, const R2* xi, int n, double* out) {
   const FElement K = vh[k];
@@ -173,8 +157,8 @@ class SupermeshOp : public E_F0mps {
       const Fem2D::Mesh* tha = GetAny<pmesh>((*mesh_a)(stack));
       const Fem2D::Mesh* thb = GetAny<pmesh>((*mesh_b)(stack));
       if (!tha || !thb) throw dlmfsi::Error("supermesh: a mesh is not defined");
-      dlmfsi::Mesh a = convert_mesh(*tha);
-      const dlmfsi::Mesh b = convert_mesh(*thb);
+      dlmfsi::Mesh a = dlmfsi_ff::convert(*tha);
+      const dlmfsi::Mesh b = dlmfsi_ff::convert(*thb);
       if (map_x) apply_map(*tha, a, GetAny<pfer>((*map_x)(stack)), GetAny<pfer>((*map_y)(stack)));
       const dlmfsi::Supermesh s = dlmfsi::build_supermesh(a, b);
       if (verbosity > 1)
