@@ -70,6 +70,18 @@ std::vector<RulePoint> make_rule(int degree) {
     const double a = 0.310352451033784, b = 0.053145049844817, c = 0.636502499121399, w = 0.082851075618374;
     for (auto [u, v] : {std::pair{a, b}, std::pair{b, a}, std::pair{a, c}, std::pair{c, a}, std::pair{b, c}, std::pair{c, b}})
       r.push_back({{u, v}, w});
+  } else if (degree == 8) {
+    // Dunavant's 16-point rule.
+    r.push_back({{1.0 / 3, 1.0 / 3}, 0.144315607677787});
+    for (auto [a, w] : {std::pair{0.459292588292723, 0.095091634267285}, std::pair{0.170569307751760, 0.103217370534718},
+                        std::pair{0.050547228317031, 0.032458497623198}}) {
+      r.push_back({{a, a}, w});
+      r.push_back({{1 - 2 * a, a}, w});
+      r.push_back({{a, 1 - 2 * a}, w});
+    }
+    const double a = 0.263112829634638, b = 0.008394777409958, c = 0.728492392955404, w = 0.027230314174435;
+    for (auto [u, v] : {std::pair{a, b}, std::pair{b, a}, std::pair{a, c}, std::pair{c, a}, std::pair{b, c}, std::pair{c, b}})
+      r.push_back({{u, v}, w});
   } else if (degree == 5) {
     const double s = std::sqrt(15.0);
     const double a1 = (6 - s) / 21, b1 = (9 + 2 * s) / 21, w1 = (155 - s) / 1200;
