@@ -6,7 +6,7 @@ OUT ?= results
 QUICK ?= 0
 FF := bin/ff
 
-.PHONY: all deps build test compare bench evidence sanitize clean
+.PHONY: all deps build test compare bench evidence sanitize fuzz clean
 
 all: build
 
@@ -32,11 +32,33 @@ compare: build
 bench: build
 	DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) QUICK=$(QUICK) scripts/bench
 
-# AddressSanitizer + UndefinedBehaviorSanitizer build of the core, running the unit tests.
+# Accuracy against speed, the scenes' Pareto fronts and the stability map: CSV + PNG under
+# $(OUT)/evidence. QUICK=1 runs the same pipeline on tiny sizes.
+evidence: build
+	DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) QUICK=$(QUICK) scripts/evidence
+
+# AddressSanitizer + UndefinedBehaviorSanitizer build of the core, running the unit tests; the property
+# test with SANITIZE_FUZZ_PAIRS pairs (the unsanitized `make test` runs 1e6; 1e6 here takes about 2 min).
+SANITIZE_FUZZ_PAIRS ?= 200000
 sanitize: deps
 	@cmake -S . -B $(BUILD)-sanitize -DCMAKE_BUILD_TYPE=Debug -DDLMFSI_SANITIZE=ON -DDLMFSI_PLUGIN=OFF > /dev/null
 	@cmake --build $(BUILD)-sanitize -j $(JOBS)
-	cd $(BUILD)-sanitize && ctest --output-on-failure -j $(JOBS)
+	cd $(BUILD)-sanitize && DLMFSI_FUZZ_PAIRS=$(SANITIZE_FUZZ_PAIRS) ctest --output-on-failure -j $(JOBS)
+
+# libFuzzer target for the clipper and the fluid search (tests/fuzz/fuzz_clip.cpp), built with clang,
+# AddressSanitizer and UndefinedBehaviorSanitizer, run for FUZZ_TIME seconds on the corpus kept in
+# $(BUILD)-fuzz/corpus; a failing input is written to $(BUILD)-fuzz/crash-*. Not part of `make test`.
+FUZZ_TIME ?= 60
+CLANGXX ?= clang++
+FUZZ_SOURCES := tests/fuzz/fuzz_clip.cpp plugin/core/clip.cpp plugin/core/predicates.cpp plugin/core/mesh.cpp \
+  plugin/core/fluid_search.cpp
+fuzz:
+	@scripts/install-deps fuzz
+	@mkdir -p $(BUILD)-fuzz/corpus
+	$(CLANGXX) -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
+	  -Iplugin/core -Itests/core $(FUZZ_SOURCES) -o $(BUILD)-fuzz/fuzz_clip
+	$(BUILD)-fuzz/fuzz_clip -max_total_time=$(FUZZ_TIME) -print_final_stats=1 \
+	  -artifact_prefix=$(BUILD)-fuzz/ $(BUILD)-fuzz/corpus
 
 clean:
-	rm -rf $(BUILD) $(BUILD)-sanitize $(BUILD).configure.log
+	rm -rf $(BUILD) $(BUILD)-sanitize $(BUILD)-fuzz $(BUILD).configure.log

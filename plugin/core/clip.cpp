@@ -56,45 +56,78 @@ Piece clip(const Point a[3], const Point b[3]) {
     if (separates) return out;
   }
 
-  Point cand[12];
+  // The candidates are the corners of the convex polygon a ∩ b. With each goes the input edge along which
+  // the polygon's boundary leaves it counter-clockwise (from, to): the corners are then ordered by the
+  // directions of those edges, which increase around a convex polygon. Both the edge choice and the order
+  // are exact decisions on the input coordinates, so the order is right however the constructed crossings
+  // are rounded. (Ordering by floating-point angles about the vertices' mean swapped crossings a few ulps
+  // apart; even exact orientations of the rounded vertices about the mean misorder thin pieces, whose
+  // vertices far apart along an edge lie within rounding of one ray from the mean.)
+  Point cand[12], from[12], to[12];
   int n = 0;
-  for (int i = 0; i < 3; ++i)
-    if (side_ab[0][i] >= 0 && side_ab[1][i] >= 0 && side_ab[2][i] >= 0) cand[n++] = a[i];
-  for (int j = 0; j < 3; ++j)
-    if (side_ba[0][j] >= 0 && side_ba[1][j] >= 0 && side_ba[2][j] >= 0 && b[j] != a[0] && b[j] != a[1] &&
-        b[j] != a[2])
-      cand[n++] = b[j];
+  auto add = [&](Point v, Point p, Point q) {
+    cand[n] = v;
+    from[n] = p;
+    to[n] = q;
+    ++n;
+  };
+  for (int i = 0; i < 3; ++i) {
+    if (side_ab[0][i] < 0 || side_ab[1][i] < 0 || side_ab[2][i] < 0) continue;
+    // a[i] in closed b: the boundary leaves it along a's edge i, unless a[i] lies on b's boundary (on the
+    // lines of b's edges with side 0) and a's edge i leaves b there; then along b's edge passing through
+    // a[i] or starting at it (with two zero sides, of b's edges j - 1 and j, a[i] is b[j]: edge j).
+    const int i1 = (i + 1) % 3;
+    bool along_a = true;
+    int jb = -1;
+    for (int j = 0; j < 3; ++j)
+      if (side_ab[j][i] == 0) {
+        if (side_ab[j][i1] < 0) along_a = false;
+        if (jb < 0 || side_ab[(j + 2) % 3][i] == 0) jb = j;
+      }
+    if (along_a) add(a[i], a[i], a[i1]);
+    else add(a[i], b[jb], b[(jb + 1) % 3]);
+  }
+  for (int j = 0; j < 3; ++j) {
+    if (side_ba[0][j] < 0 || side_ba[1][j] < 0 || side_ba[2][j] < 0 || b[j] == a[0] || b[j] == a[1] || b[j] == a[2])
+      continue;
+    // b[j] in closed a and not a vertex of a: on at most one of a's edge lines
+    const int j1 = (j + 1) % 3;
+    int ia = -1;
+    for (int i = 0; i < 3; ++i)
+      if (side_ba[i][j] == 0 && side_ba[i][j1] < 0) ia = i;
+    if (ia < 0) add(b[j], b[j], b[j1]);
+    else add(b[j], a[ia], a[(ia + 1) % 3]);
+  }
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3;
     for (int j = 0; j < 3; ++j) {
       const int j1 = (j + 1) % 3;
-      if (side_ab[j][i] * side_ab[j][i1] < 0 && side_ba[i][j] * side_ba[i][j1] < 0)
-        cand[n++] = crossing(a[i], a[i1], b[j], b[j1]);
+      if (side_ab[j][i] * side_ab[j][i1] < 0 && side_ba[i][j] * side_ba[i][j1] < 0) {
+        // a proper crossing: a's edge enters b here (then the boundary follows it) or leaves b (then b's edge
+        // enters a and the boundary follows that)
+        const Point x = crossing(a[i], a[i1], b[j], b[j1]);
+        if (side_ab[j][i1] > 0) add(x, a[i], a[i1]);
+        else add(x, b[j], b[j1]);
+      }
     }
   }
   if (n < 3) return out;  // cannot happen when the interiors meet; kept as a guard
 
-  // The candidates are the vertices of a convex polygon: order them by angle about their mean c, with
-  // exact comparisons. The directions seen from c are split into the half-turns [0, 180) and [180, 360)
-  // degrees; within one, "q left of c -> p" is a strict weak order. Floating-point angles (the former
-  // pseudo-angle keys) misordered thin pieces whose vertices lie nearly on one ray from c, giving pieces
-  // that did not wind once; exact comparisons of the actual doubles cannot, while c is inside.
-  Point c{0, 0};
-  for (int k = 0; k < n; ++k) c = c + cand[k];
-  c = (1.0 / n) * c;
-  auto half = [c](Point p) {
-    if (p == c) return 0;
-    return p.y > c.y || (p.y == c.y && p.x > c.x) ? 1 : 2;
+  // Order by the direction to - from: the half-turn [0, 180) degrees first, then [180, 360); within one,
+  // by the exact sign of the cross product of the two directions.
+  auto half = [&](int k) { return to[k].y > from[k].y || (to[k].y == from[k].y && to[k].x > from[k].x) ? 0 : 1; };
+  auto before = [&](int k, int m) {
+    const int hk = half(k), hm = half(m);
+    if (hk != hm) return hk < hm;
+    return cross_sign(from[k], to[k], from[m], to[m]) > 0;
   };
-  auto before = [c, &half](Point p, Point q) {
-    const int hp = half(p), hq = half(q);
-    if (hp != hq) return hp < hq;
-    if (hp == 0) return false;
-    const int o = orient2d(c, p, q);
-    return o > 0 || (o == 0 && lex_less(p, q));
-  };
+  int order[12];
+  for (int k = 0; k < n; ++k) order[k] = k;
   for (int k = 1; k < n; ++k)
-    for (int m = k; m > 0 && before(cand[m], cand[m - 1]); --m) std::swap(cand[m], cand[m - 1]);
+    for (int m = k; m > 0 && before(order[m], order[m - 1]); --m) std::swap(order[m], order[m - 1]);
+  Point sorted[12];
+  for (int k = 0; k < n; ++k) sorted[k] = cand[order[k]];
+  for (int k = 0; k < n; ++k) cand[k] = sorted[k];
   out.n = std::min(n, Piece::kMaxVertices);
   for (int k = 0; k < out.n; ++k) out.v[k] = cand[k];
   return out;

@@ -44,10 +44,11 @@ int sign_of_sum_of_products(const double (*f)[2], int count) {
     Uint128 m;
     int e;
   };
-  Term terms[6];
+  Term terms[8];
   int n = 0, emin = INT_MAX;
-  for (int k = 0; k < count && n < 6; ++k) {
+  for (int k = 0; k < count && n < 8; ++k) {
     const double x = f[k][0], y = f[k][1];
+    if (!std::isfinite(x) || !std::isfinite(y)) return 0;  // outside the contract; no undefined conversion
     if (x == 0 || y == 0) continue;
     int ex, ey;
     // x = mx 2^(ex - 53) with |mx| < 2^53 an integer (exact, subnormals included)
@@ -93,29 +94,40 @@ int sign_of_sum_of_products(const double (*f)[2], int count) {
   return 0;
 }
 
-}  // namespace
-
-int orient2d_exact(Point a, Point b, Point c) {
-  // Six products, each split exactly into p + e with a fused multiply-add.
-  const double f[6][2] = {{a.x, b.y}, {-a.y, b.x}, {b.x, c.y}, {-b.y, c.x}, {c.x, a.y}, {-c.y, a.x}};
-  // The expansion below is exact while every product's rounding error is a double and nothing overflows:
-  // outside 2^-968 <= |x y| <= 2^1018 (a coordinate below about 1e-146 or above 1e146, subnormals
-  // included, next to others) the sign is found with integers instead.
-  for (const auto& t : f) {
-    const double p = std::fabs(t[0] * t[1]);
-    if (t[0] != 0 && t[1] != 0 && !(p >= 0x1p-968 && p <= 0x1p+1018)) return sign_of_sum_of_products(f, 6);
+// Sign of sum_k x_k * y_k (count <= 8) for any finite doubles: each product split exactly into p + e with
+// a fused multiply-add and summed into a non-overlapping expansion, exact while every product's rounding
+// error is a double and nothing overflows; outside 2^-968 <= |x y| <= 2^1018 (a coordinate below about
+// 1e-146 or above 1e146, subnormals included, next to others) the sign is found with integers instead.
+int sign_of_products(const double (*f)[2], int count) {
+  for (int k = 0; k < count; ++k) {
+    const double p = std::fabs(f[k][0] * f[k][1]);
+    if (f[k][0] != 0 && f[k][1] != 0 && !(p >= 0x1p-968 && p <= 0x1p+1018)) return sign_of_sum_of_products(f, count);
   }
-  double h[12];
+  double h[16];
   int n = 0;
-  for (const auto& t : f) {
-    double p = t[0] * t[1];
-    double e = std::fma(t[0], t[1], -p);
+  for (int k = 0; k < count; ++k) {
+    const double p = f[k][0] * f[k][1];
+    const double e = std::fma(f[k][0], f[k][1], -p);
     n = grow_expansion(h, n, p);
     n = grow_expansion(h, n, e);
   }
   // In a non-overlapping expansion the last (largest) component carries the sign.
   if (n == 0) return 0;
   return h[n - 1] > 0 ? 1 : -1;
+}
+
+}  // namespace
+
+int orient2d_exact(Point a, Point b, Point c) {
+  const double f[6][2] = {{a.x, b.y}, {-a.y, b.x}, {b.x, c.y}, {-b.y, c.x}, {c.x, a.y}, {-c.y, a.x}};
+  return sign_of_products(f, 6);
+}
+
+int cross_sign_exact(Point p, Point q, Point r, Point s) {
+  // (q - p) x (s - r) = qx sy - qx ry - px sy + px ry - qy sx + qy rx + py sx - py rx
+  const double f[8][2] = {{q.x, s.y}, {-q.x, r.y}, {-p.x, s.y}, {p.x, r.y},
+                          {-q.y, s.x}, {q.y, r.x}, {p.y, s.x}, {-p.y, r.x}};
+  return sign_of_products(f, 8);
 }
 
 }  // namespace dlmfsi

@@ -7,14 +7,19 @@
 namespace dlmfsi {
 
 // Sign of det [b-a, c-a]: +1 if (a, b, c) turn counter-clockwise, -1 clockwise, 0 exactly collinear.
-// Exact for all finite inputs whose pairwise products neither overflow nor underflow
-// (|coordinates| between about 1e-146 and 1e146): a floating-point filter decides the common case, and
-// near-degenerate cases (coincident points, a point on a line, collinear edges) are decided by an
-// exact expansion of ax*by - ay*bx + bx*cy - by*cx + cx*ay - cy*ax.
+// Exact for all finite inputs: a floating-point filter decides the common case, and near-degenerate
+// cases (coincident points, a point on a line, collinear edges) are decided by an exact expansion of
+// ax*by - ay*bx + bx*cy - by*cx + cx*ay - cy*ax, or, when a product leaves the range where that
+// expansion is exact (coordinates below about 1e-146 or above 1e146, subnormals), by integer arithmetic.
 inline int orient2d(Point a, Point b, Point c);
 
 // The same determinant evaluated exactly, without the floating-point filter.
 int orient2d_exact(Point a, Point b, Point c);
+
+// Sign of the cross product (q - p) x (s - r) of two edge directions: +1 if s - r points to the left of
+// q - p, exact for all finite inputs (the same filter, then an exact evaluation).
+inline int cross_sign(Point p, Point q, Point r, Point s);
+int cross_sign_exact(Point p, Point q, Point r, Point s);
 
 inline int orient2d(Point a, Point b, Point c) {
   const double left = (a.x - c.x) * (b.y - c.y);
@@ -22,9 +27,27 @@ inline int orient2d(Point a, Point b, Point c) {
   const double det = left - right;
   // Shewchuk's ccwerrboundA = (3 + 16 eps) eps with eps = 2^-53.
   const double bound = 3.3306690738754716e-16 * (std::fabs(left) + std::fabs(right));
-  if (det > bound) return 1;
-  if (-det > bound) return -1;
+  // The bound assumes no underflow: below 2^-960 (triangles smaller than about 1e-145) the products'
+  // absolute underflow error can exceed it and the sign came out wrong; there, and on overflow (inf, NaN),
+  // the exact evaluation decides.
+  if (bound >= 0x1p-960) {
+    if (det > bound) return 1;
+    if (-det > bound) return -1;
+  }
   return orient2d_exact(a, b, c);
+}
+
+inline int cross_sign(Point p, Point q, Point r, Point s) {
+  // The filter of orient2d: four rounded differences, two products, one subtraction.
+  const double left = (q.x - p.x) * (s.y - r.y);
+  const double right = (q.y - p.y) * (s.x - r.x);
+  const double det = left - right;
+  const double bound = 3.3306690738754716e-16 * (std::fabs(left) + std::fabs(right));
+  if (bound >= 0x1p-960) {
+    if (det > bound) return 1;
+    if (-det > bound) return -1;
+  }
+  return cross_sign_exact(p, q, r, s);
 }
 
 }  // namespace dlmfsi
