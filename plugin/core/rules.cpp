@@ -45,53 +45,43 @@ void gauss_legendre(int n, std::vector<double>& nodes, std::vector<double>& weig
 
 namespace {
 
+// The symmetric orbits of a point in barycentric coordinates: (a, a, 1-2a) gives 3 points, (a, b, c) 6.
+void orbit3(std::vector<RulePoint>& r, double a, double w) {
+  r.push_back({{a, a}, w});
+  r.push_back({{1 - 2 * a, a}, w});
+  r.push_back({{a, 1 - 2 * a}, w});
+}
+
+void orbit6(std::vector<RulePoint>& r, double a, double b, double w) {
+  const double c = 1 - a - b;
+  for (auto [u, v] : {std::pair{a, b}, std::pair{b, a}, std::pair{a, c}, std::pair{c, a}, std::pair{b, c}, std::pair{c, b}})
+    r.push_back({{u, v}, w});
+}
+
 std::vector<RulePoint> make_rule(int degree) {
   std::vector<RulePoint> r;
   if (degree <= 1) {
     r.push_back({{1.0 / 3, 1.0 / 3}, 1.0});
   } else if (degree == 2) {
-    r.push_back({{1.0 / 6, 1.0 / 6}, 1.0 / 3});
-    r.push_back({{2.0 / 3, 1.0 / 6}, 1.0 / 3});
-    r.push_back({{1.0 / 6, 2.0 / 3}, 1.0 / 3});
-  } else if (degree == 4) {
-    // Dunavant's 6-point rule.
-    for (auto [a, w] : {std::pair{0.445948490915965, 0.223381589678011}, std::pair{0.091576213509771, 0.109951743655322}}) {
-      r.push_back({{a, a}, w});
-      r.push_back({{1 - 2 * a, a}, w});
-      r.push_back({{a, 1 - 2 * a}, w});
-    }
-  } else if (degree == 6) {
-    // Dunavant's 12-point rule.
-    for (auto [a, w] : {std::pair{0.249286745170910, 0.116786275726379}, std::pair{0.063089014491502, 0.050844906370207}}) {
-      r.push_back({{a, a}, w});
-      r.push_back({{1 - 2 * a, a}, w});
-      r.push_back({{a, 1 - 2 * a}, w});
-    }
-    const double a = 0.310352451033784, b = 0.053145049844817, c = 0.636502499121399, w = 0.082851075618374;
-    for (auto [u, v] : {std::pair{a, b}, std::pair{b, a}, std::pair{a, c}, std::pair{c, a}, std::pair{b, c}, std::pair{c, b}})
-      r.push_back({{u, v}, w});
-  } else if (degree == 8) {
-    // Dunavant's 16-point rule.
-    r.push_back({{1.0 / 3, 1.0 / 3}, 0.144315607677787});
-    for (auto [a, w] : {std::pair{0.459292588292723, 0.095091634267285}, std::pair{0.170569307751760, 0.103217370534718},
-                        std::pair{0.050547228317031, 0.032458497623198}}) {
-      r.push_back({{a, a}, w});
-      r.push_back({{1 - 2 * a, a}, w});
-      r.push_back({{a, 1 - 2 * a}, w});
-    }
-    const double a = 0.263112829634638, b = 0.008394777409958, c = 0.728492392955404, w = 0.027230314174435;
-    for (auto [u, v] : {std::pair{a, b}, std::pair{b, a}, std::pair{a, c}, std::pair{c, a}, std::pair{b, c}, std::pair{c, b}})
-      r.push_back({{u, v}, w});
-  } else if (degree == 5) {
+    orbit3(r, 1.0 / 6, 1.0 / 3);
+  } else if (degree == 4) {  // Dunavant
+    orbit3(r, 0.445948490915965, 0.223381589678011);
+    orbit3(r, 0.091576213509771, 0.109951743655322);
+  } else if (degree == 5) {  // Radon
     const double s = std::sqrt(15.0);
-    const double a1 = (6 - s) / 21, b1 = (9 + 2 * s) / 21, w1 = (155 - s) / 1200;
-    const double a2 = (6 + s) / 21, b2 = (9 - 2 * s) / 21, w2 = (155 + s) / 1200;
     r.push_back({{1.0 / 3, 1.0 / 3}, 9.0 / 40});
-    for (auto [a, b, w] : {std::tuple{a1, b1, w1}, std::tuple{a2, b2, w2}}) {
-      r.push_back({{a, a}, w});
-      r.push_back({{b, a}, w});
-      r.push_back({{a, b}, w});
-    }
+    orbit3(r, (6 - s) / 21, (155 - s) / 1200);
+    orbit3(r, (6 + s) / 21, (155 + s) / 1200);
+  } else if (degree == 6) {  // Dunavant
+    orbit3(r, 0.249286745170910, 0.116786275726379);
+    orbit3(r, 0.063089014491502, 0.050844906370207);
+    orbit6(r, 0.310352451033784, 0.053145049844817, 0.082851075618374);
+  } else if (degree == 8) {  // Dunavant
+    r.push_back({{1.0 / 3, 1.0 / 3}, 0.144315607677787});
+    orbit3(r, 0.459292588292723, 0.095091634267285);
+    orbit3(r, 0.170569307751760, 0.103217370534718);
+    orbit3(r, 0.050547228317031, 0.032458497623198);
+    orbit6(r, 0.263112829634638, 0.008394777409958, 0.027230314174435);
   } else {
     std::vector<double> xu, wu, xv, wv;
     gauss_legendre((degree + 3) / 2, xu, wu);

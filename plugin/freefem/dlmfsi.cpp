@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "convert.hpp"
+#include "adapter.hpp"
 #include "coupling.hpp"
 #include "errors.hpp"
 
@@ -195,8 +195,7 @@ dlmfsi::CouplingOptions DlmfsiOp::options(Stack stack) const {
 }
 
 AnyType DlmfsiOp::operator()(Stack stack) const {
-  std::string failure;
-  try {
+  return dlmfsi_ff::guarded([&]() -> AnyType {
     const dlmfsi::CouplingOptions opt = options(stack);
     FESpace* vf = **GetAny<pfes*>((*fluid_space)(stack));
     FESpace* vs = **GetAny<pfes*>((*solid_space)(stack));
@@ -217,24 +216,17 @@ AnyType DlmfsiOp::operator()(Stack stack) const {
     const SpaceBasis multiplier(*vs), map_x_basis(sx), map_y_basis(sy);
     const dlmfsi::FieldMap map(solid, map_x_basis, &cx[0], px.second, map_y_basis, &cy[0], py.second);
     dlmfsi::CouplingReport report;
-    const dlmfsi::CsrMatrix b = dlmfsi::assemble_coupling(fluid, solid, multiplier, map, opt, &report);
+    dlmfsi::CsrMatrix b = dlmfsi::assemble_coupling(fluid, solid, multiplier, map, opt, &report);
     if (verbosity > 1) cout << report.summary() << endl;
     if (opt.drop_outside && report.outside_area > 0 && verbosity > 0)
       cout << "dlmfsi: dropped area outside the fluid mesh " << report.outside_area << " (solid triangle "
            << report.worst_triangle << " worst)" << endl;
 
+    // FreeFEM copies the compressed rows (set(..., tcsr=1)).
     MatriceMorse<double>* pa = new MatriceMorse<double>(b.rows, b.cols, 0, 0);
-    std::vector<int> start(b.start), column(b.column);
-    std::vector<double> value(b.value);
-    pa->set(b.rows, b.cols, 0, value.size(), start.data(), column.data(), value.data(), 0, 1);
+    pa->set(b.rows, b.cols, 0, b.value.size(), b.start.data(), b.column.data(), b.value.data(), 0, 1);
     return SetAny<newpMatrice_Creuse<double> >(newpMatrice_Creuse<double>(stack, pa));
-  } catch (const std::exception& e) {
-    failure = e.what();
-  } catch (...) {
-    failure = "dlmfsi: unknown C++ exception";
-  }
-  ExecError(failure);
-  return Nothing;
+  });
 }
 
 // dlmfsi on spaces that are not 2D (3D volume, surface or curve meshes): a catchable error at run time

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "convert.hpp"
+#include "adapter.hpp"
 #include "errors.hpp"
 #include "supermesh.hpp"
 
@@ -152,8 +152,7 @@ class SupermeshOp : public E_F0mps {
   static E_F0* f(const basicAC_F0& args) { return new SupermeshOp(args); }
 
   AnyType operator()(Stack stack) const {
-    std::string failure;
-    try {
+    return dlmfsi_ff::guarded([&]() -> AnyType {
       const Fem2D::Mesh* tha = GetAny<pmesh>((*mesh_a)(stack));
       const Fem2D::Mesh* thb = GetAny<pmesh>((*mesh_b)(stack));
       if (!tha || !thb) throw dlmfsi::Error("supermesh: a mesh is not defined");
@@ -180,13 +179,7 @@ class SupermeshOp : public E_F0mps {
       }
       Add2StackOfPtr2FreeRC(stack, m);
       return SetAny<pmesh>(m);
-    } catch (const std::exception& e) {
-      failure = e.what();
-    } catch (...) {
-      failure = "dlmfsi: unknown C++ exception";
-    }
-    ExecError(failure);
-    return Nothing;
+    });
   }
 };
 

@@ -1,6 +1,9 @@
-// Shared by the adapter files: a FreeFEM 2D mesh as the core's plain arrays.
+// Shared by the adapter files: meshes as the core's plain arrays, and C++ errors as FreeFEM errors.
 #pragma once
 #include "ff++.hpp"
+
+#include <exception>
+#include <string>
 
 #include "mesh.hpp"
 
@@ -22,6 +25,22 @@ inline dlmfsi::Mesh convert(const Fem2D::Mesh& th) {
     }
   m.check();
   return m;
+}
+
+// Runs body() and turns any C++ exception into a FreeFEM ExecError, which a script's try/catch catches
+// (thrown outside the handler, so that FreeFEM's own exception is not caught here again).
+template <class Body>
+AnyType guarded(Body&& body) {
+  std::string failure;
+  try {
+    return body();
+  } catch (const std::exception& e) {
+    failure = e.what();
+  } catch (...) {
+    failure = "dlmfsi: unknown C++ exception";
+  }
+  ExecError(failure);
+  return Nothing;
 }
 
 }  // namespace dlmfsi_ff
