@@ -54,13 +54,12 @@ std::vector<int> used_dofs(const Basis& basis, const std::vector<int>& component
 // Everything one thread needs to assemble a run of solid triangles.
 class Worker {
  public:
-  Worker(const Mesh& fluid, const FluidGrid& grid, const Basis& fluid_space, const PolynomialBasis& fluid_poly,
-         const Mesh& solid, const Basis& multiplier, const PolynomialBasis& solid_poly, const SolidMap& map,
-         const CouplingOptions& opt, const CouplingReport& degrees)
-      : fluid_(fluid), fluid_space_(fluid_space), solid_(solid), multiplier_(multiplier), map_(map), opt_(opt),
-        search_(grid), nf_(fluid_space.local_dofs()), ns_(multiplier.local_dofs()),
-        ncf_(fluid_space.components()), ncs_(multiplier.components()),
-        fluid_poly_(fluid_poly), solid_poly_(solid_poly) {
+  Worker(const FluidSide& side, const Mesh& solid, const Basis& multiplier, const PolynomialBasis& solid_poly,
+         const SolidMap& map, const CouplingOptions& opt, const CouplingReport& degrees)
+      : side_(side), fluid_(side.mesh()), fluid_space_(side.space()), solid_(solid), multiplier_(multiplier),
+        map_(map), opt_(opt), search_(side.grid()), nf_(side.space().local_dofs()), ns_(multiplier.local_dofs()),
+        ncf_(side.space().components()), ncs_(multiplier.components()), fluid_poly_(side.basis()),
+        solid_poly_(solid_poly) {
     report_.fluid_degree = degrees.fluid_degree;
     report_.solid_degree = degrees.solid_degree;
     report_.rule_degree = degrees.rule_degree;
@@ -68,16 +67,15 @@ class Worker {
     const size_t np = opt.fluid_components.size();
     for (size_t p = 0; p < np; ++p) {
       Range f, s;
-      fluid_space.component_dofs(opt.fluid_components[p], f.first, f.last);
+      fluid_space_.component_dofs(opt.fluid_components[p], f.first, f.last);
       multiplier.component_dofs(opt.solid_components[p], s.first, s.last);
       frange_.push_back(f);
       srange_.push_back(s);
     }
-    fluid_used_ = used_dofs(fluid_space, opt.fluid_components);
+    fluid_used_ = used_dofs(fluid_space_, opt.fluid_components);
     solid_used_ = used_dofs(multiplier, opt.solid_components);
     fvals_.resize(static_cast<size_t>(nf_) * ncf_ * 3);
     svals_.resize(static_cast<size_t>(ns_) * ncs_ * 3);
-    fdofs_.resize(nf_);
     sdofs_.resize(ns_);
     fcol_.resize(nf_);
   }
@@ -257,9 +255,9 @@ class Worker {
 
   // Maps the used local dofs of fluid triangle kf to columns of the block, adding new ones.
   void fluid_columns(int kf) {
-    fluid_space_.dofs(kf, fdofs_.data());
+    const int* fdofs = side_.dofs(kf);
     for (int j : fluid_used_) {
-      const int g = fdofs_[j];
+      const int g = fdofs[j];
       auto it = std::find(columns_.begin(), columns_.end(), g);
       if (it == columns_.end()) {
         columns_.push_back(g);
@@ -311,6 +309,7 @@ class Worker {
       }
   }
 
+  const FluidSide& side_;
   const Mesh& fluid_;
   const Basis& fluid_space_;
   const Mesh& solid_;
@@ -324,7 +323,7 @@ class Worker {
   std::vector<Range> frange_, srange_;
   std::vector<int> fluid_used_, solid_used_;
   std::vector<double> fvals_, svals_, block_;  // block_: column-major, ns_ rows per column
-  std::vector<int> fdofs_, sdofs_, fcol_, columns_;
+  std::vector<int> sdofs_, fcol_, columns_;
 };
 
 // Components named on one side must exist in that side's space.
@@ -365,7 +364,9 @@ Mesh checked(Mesh mesh) {
 FluidSide::FluidSide(Mesh mesh, const Basis& space, const std::vector<int>& components)
     : mesh_(checked(std::move(mesh))), space_(space), components_(components),
       degree_((check_components(space, components, "fluid", "fluid space"), polynomial_degree(space, components))), grid_(mesh_),
-      basis_(space, mesh_, degree_, components) {}
+      basis_(space, mesh_, degree_, components), dofs_(static_cast<size_t>(mesh_.size()) * space.local_dofs()) {
+  for (int k = 0; k < mesh_.size(); ++k) space.dofs(k, &dofs_[static_cast<size_t>(k) * space.local_dofs()]);
+}
 
 CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const Mesh& solid, const Basis& multiplier,
                             const SolidMap& map, const CouplingOptions& opt, CouplingReport* report) {
@@ -377,7 +378,6 @@ CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const M
 CsrMatrix assemble_coupling(const FluidSide& side, const Mesh& solid, const Basis& multiplier, const SolidMap& map,
                             const CouplingOptions& opt, CouplingReport* report) {
   const auto start = std::chrono::steady_clock::now();
-  const Mesh& fluid = side.mesh();
   const Basis& fluid_space = side.space();
   check_options(fluid_space, multiplier, opt);
   if (opt.fluid_components != side.components()) throw Error("the fluid side was prepared for other components");
@@ -395,7 +395,6 @@ CsrMatrix assemble_coupling(const FluidSide& side, const Mesh& solid, const Basi
   total.rule_degree = product;
   if (opt.method == CouplingOptions::Method::Quadrature && opt.qforder >= 0) total.rule_degree = opt.qforder;
 
-  const FluidGrid& grid = side.grid();
   const PolynomialBasis& fluid_poly = side.basis();
   const PolynomialBasis solid_poly(multiplier, solid, total.solid_degree, opt.solid_components);
   // Threads only where no evaluation goes back to the caller's Basis or map (they need not be thread-safe).
@@ -404,7 +403,7 @@ CsrMatrix assemble_coupling(const FluidSide& side, const Mesh& solid, const Basi
   std::vector<Worker> workers;
   workers.reserve(threads);
   for (int t = 0; t < threads; ++t)
-    workers.emplace_back(fluid, grid, fluid_space, fluid_poly, solid, multiplier, solid_poly, map, opt, total);
+    workers.emplace_back(side, solid, multiplier, solid_poly, map, opt, total);
   auto since = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   total.setup_seconds = since();
   // Contiguous shares in solid order, so that the sums come out in the same order for any thread count.

@@ -55,6 +55,8 @@ class FluidSide {
   int degree() const { return degree_; }
   const FluidGrid& grid() const { return grid_; }
   const PolynomialBasis& basis() const { return basis_; }
+  // The global dofs of triangle k (space().local_dofs() of them).
+  const int* dofs(int k) const { return &dofs_[static_cast<size_t>(k) * space_.local_dofs()]; }
 
  private:
   Mesh mesh_;
@@ -63,6 +65,7 @@ class FluidSide {
   int degree_;
   FluidGrid grid_;
   PolynomialBasis basis_;
+  std::vector<int> dofs_;
 };
 
 // B_ij = int_{solid} c1 grad_s psi_i : grad_s (phi_j o X) + c2 psi_i . (phi_j o X) ds,
