@@ -8,36 +8,36 @@
 
 namespace dlmfsi {
 
+namespace {
+
+// P_n(x) and P_n'(x) by the three-term recurrence (n >= 1, |x| < 1).
+void legendre(int n, double x, double& p, double& dp) {
+  double p0 = 1, p1 = x;
+  for (int k = 2; k <= n; ++k) {
+    const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+    p0 = p1;
+    p1 = p2;
+  }
+  p = p1;
+  dp = n * (x * p1 - p0) / (x * x - 1);
+}
+
+}  // namespace
+
 void gauss_legendre(int n, std::vector<double>& nodes, std::vector<double>& weights) {
   nodes.assign(n, 0);
   weights.assign(n, 0);
   const double pi = std::acos(-1.0);
   for (int i = 0; i < n; ++i) {
-    // Newton on the Legendre polynomial P_n from the Chebyshev-like first guess.
-    double x = std::cos(pi * (i + 0.75) / (n + 0.5)), dp = 1;
+    // Newton on P_n from the Chebyshev-like first guess.
+    double x = std::cos(pi * (i + 0.75) / (n + 0.5)), p, dp;
     for (int it = 0; it < 100; ++it) {
-      double p0 = 1, p1 = x;
-      for (int k = 2; k <= n; ++k) {
-        const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      if (n == 1) p0 = 1;
-      const double pn = n == 0 ? 1 : p1;
-      dp = n * (x * pn - p0) / (x * x - 1);
-      const double dx = pn / dp;
+      legendre(n, x, p, dp);
+      const double dx = p / dp;
       x -= dx;
       if (std::fabs(dx) < 1e-16) break;
     }
-    // Recompute the derivative at the converged node for the weight 2 / ((1 - x^2) P_n'(x)^2).
-    double p0 = 1, p1 = x;
-    for (int k = 2; k <= n; ++k) {
-      const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
-      p0 = p1;
-      p1 = p2;
-    }
-    if (n == 1) p0 = 1;
-    dp = n * (x * p1 - p0) / (x * x - 1);
+    legendre(n, x, p, dp);  // the derivative at the converged node, for the weight 2 / ((1 - x^2) P_n'^2)
     nodes[i] = 0.5 * (1 - x);
     weights[i] = 1.0 / ((1 - x * x) * dp * dp);  // half of the [-1,1] weight
   }
