@@ -173,8 +173,6 @@ class Worker {
 
   void integrate_piece(const MappedTriangle& mt, int kf, const Piece& piece, int degree) {
     ++report_.pieces;
-    Point kc[3];
-    fluid_.corners(kf, kc);
     fluid_columns(kf);
     const auto& rule = triangle_rule(degree);
     for (int t = 1; t + 1 < piece.n; ++t) {
@@ -231,8 +229,6 @@ class Worker {
           continue;
         }
         hint_ = kf;
-        Point kc[3];
-        fluid_.corners(kf, kc);
         fluid_columns(kf);
         fluid_poly_.evaluate(kf, fluid_poly_.to_reference(kf, mv.x), fvals_.data());
         solid_poly_.evaluate(mt.k, xi, svals_.data());
