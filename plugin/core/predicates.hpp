@@ -21,33 +21,29 @@ int orient2d_exact(Point a, Point b, Point c);
 inline int cross_sign(Point p, Point q, Point r, Point s);
 int cross_sign_exact(Point p, Point q, Point r, Point s);
 
-inline int orient2d(Point a, Point b, Point c) {
-  const double left = (a.x - c.x) * (b.y - c.y);
-  const double right = (a.y - c.y) * (b.x - c.x);
+// The floating-point filter shared by the predicates: the sign of left - right when the rounding error
+// of the two products and the subtraction (Shewchuk's ccwerrboundA = (3 + 16 eps) eps, eps = 2^-53)
+// cannot change it, 0 when the exact evaluation must decide. The bound assumes no underflow: below
+// 2^-960 (triangles smaller than about 1e-145) the products' absolute underflow error can exceed it, and
+// on overflow (inf, NaN) nothing is decided here either.
+inline int filtered_sign(double left, double right) {
   const double det = left - right;
-  // Shewchuk's ccwerrboundA = (3 + 16 eps) eps with eps = 2^-53.
   const double bound = 3.3306690738754716e-16 * (std::fabs(left) + std::fabs(right));
-  // The bound assumes no underflow: below 2^-960 (triangles smaller than about 1e-145) the products'
-  // absolute underflow error can exceed it and the sign came out wrong; there, and on overflow (inf, NaN),
-  // the exact evaluation decides.
   if (bound >= 0x1p-960) {
     if (det > bound) return 1;
     if (-det > bound) return -1;
   }
-  return orient2d_exact(a, b, c);
+  return 0;
+}
+
+inline int orient2d(Point a, Point b, Point c) {
+  const int s = filtered_sign((a.x - c.x) * (b.y - c.y), (a.y - c.y) * (b.x - c.x));
+  return s != 0 ? s : orient2d_exact(a, b, c);
 }
 
 inline int cross_sign(Point p, Point q, Point r, Point s) {
-  // The filter of orient2d: four rounded differences, two products, one subtraction.
-  const double left = (q.x - p.x) * (s.y - r.y);
-  const double right = (q.y - p.y) * (s.x - r.x);
-  const double det = left - right;
-  const double bound = 3.3306690738754716e-16 * (std::fabs(left) + std::fabs(right));
-  if (bound >= 0x1p-960) {
-    if (det > bound) return 1;
-    if (-det > bound) return -1;
-  }
-  return cross_sign_exact(p, q, r, s);
+  const int f = filtered_sign((q.x - p.x) * (s.y - r.y), (q.y - p.y) * (s.x - r.x));
+  return f != 0 ? f : cross_sign_exact(p, q, r, s);
 }
 
 }  // namespace dlmfsi

@@ -47,18 +47,24 @@ void ccw(Point t[3]) {
 
 double tri_area(const Point t[3]) { return 0.5 * area2(t[0], t[1], t[2]); }
 
+// Two random counter-clockwise triangles in the unit square; false for a degenerate draw.
+bool random_pair(std::mt19937_64& rng, Point a[3], Point b[3]) {
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int i = 0; i < 3; ++i) a[i] = {u(rng), u(rng)};
+  for (int i = 0; i < 3; ++i) b[i] = {u(rng), u(rng)};
+  if (orient2d(a[0], a[1], a[2]) == 0 || orient2d(b[0], b[1], b[2]) == 0) return false;
+  ccw(a);
+  ccw(b);
+  return true;
+}
+
 }  // namespace
 
 TEST(Clip, RandomPairsMatchIndependentClipper) {
   std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> u(0, 1);
   for (int it = 0; it < 100000; ++it) {
     Point a[3], b[3];
-    for (auto& p : a) p = {u(rng), u(rng)};
-    for (auto& p : b) p = {u(rng), u(rng)};
-    if (orient2d(a[0], a[1], a[2]) == 0 || orient2d(b[0], b[1], b[2]) == 0) continue;
-    ccw(a);
-    ccw(b);
+    if (!random_pair(rng, a, b)) continue;
     const double got = clip(a, b).area();
     const long double want = reference_area(a, b);
     ASSERT_NEAR(got, static_cast<double>(want), 1e-13) << "pair " << it;
@@ -67,14 +73,9 @@ TEST(Clip, RandomPairsMatchIndependentClipper) {
 
 TEST(Clip, PiecesAreConvexCounterClockwise) {
   std::mt19937_64 rng(8);
-  std::uniform_real_distribution<double> u(0, 1);
   for (int it = 0; it < 20000; ++it) {
     Point a[3], b[3];
-    for (auto& p : a) p = {u(rng), u(rng)};
-    for (auto& p : b) p = {u(rng), u(rng)};
-    if (orient2d(a[0], a[1], a[2]) == 0 || orient2d(b[0], b[1], b[2]) == 0) continue;
-    ccw(a);
-    ccw(b);
+    if (!random_pair(rng, a, b)) continue;
     Piece p = clip(a, b);
     for (int i = 0; i < p.n; ++i)
       ASSERT_GE(orient2d(p.v[i], p.v[(i + 1) % p.n], p.v[(i + 2) % p.n]), 0);
