@@ -36,7 +36,13 @@ Point crossing(Point p, Point q, Point r, Point s) {
 }
 
 Piece clip(const Point a[3], const Point b[3]) {
+  unsigned beyond;
+  return clip(a, b, beyond);
+}
+
+Piece clip(const Point a[3], const Point b[3], unsigned& beyond) {
   Piece out;
+  beyond = 0;
   // side_ab[j][i]: side of a[i] with respect to edge b[j] -> b[j+1]; side_ba[i][j] likewise.
   int side_ab[3][3], side_ba[3][3];
   for (int j = 0; j < 3; ++j) {
@@ -44,17 +50,30 @@ Piece clip(const Point a[3], const Point b[3]) {
     for (int i = 0; i < 3; ++i) {
       side_ab[j][i] = orient2d(b[j], b[(j + 1) % 3], a[i]);
       if (side_ab[j][i] > 0) separates = false;
+      if (side_ab[j][i] < 0) beyond |= 1u << j;
     }
     if (separates) return out;
   }
+  // A whole triangle, from its lexicographically smallest vertex, so that the piece does not depend on
+  // which vertex a triangle lists first.
+  auto whole = [&out](const Point t[3]) {
+    const int first = lex_less(t[1], t[0]) ? (lex_less(t[2], t[1]) ? 2 : 1) : (lex_less(t[2], t[0]) ? 2 : 0);
+    out.n = 3;
+    for (int k = 0; k < 3; ++k) out.v[k] = t[(first + k) % 3];
+    return out;
+  };
+  if (beyond == 0) return whole(a);  // a in closed b
+  bool b_inside = true;
   for (int i = 0; i < 3; ++i) {
     bool separates = true;
     for (int j = 0; j < 3; ++j) {
       side_ba[i][j] = orient2d(a[i], a[(i + 1) % 3], b[j]);
       if (side_ba[i][j] > 0) separates = false;
+      if (side_ba[i][j] < 0) b_inside = false;
     }
     if (separates) return out;
   }
+  if (b_inside) return whole(b);
 
   // The candidates are the corners of the convex polygon a ∩ b. With each goes the input edge along which
   // the polygon's boundary leaves it counter-clockwise (from, to): the corners are then ordered by the

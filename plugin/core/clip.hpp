@@ -27,6 +27,13 @@ struct Piece {
 // vertex, collinear overlapping edges, one triangle inside the other, identical triangles.
 Piece clip(const Point a[3], const Point b[3]);
 
+// The same, also telling across which edges of b the triangle a reaches: bit j of beyond is set when a
+// vertex of a lies strictly outside the line of b's edge j (b[j] -> b[j+1]). Only there can a's interior
+// meet a triangle on the other side of that edge, so a search over b's neighbours follows these edges only.
+// Set whenever the piece is not empty. When a lies in closed b (beyond == 0) the piece is a itself, and
+// when b lies in closed a it is b: both without constructing a point.
+Piece clip(const Point a[3], const Point b[3], unsigned& beyond);
+
 // The point where segments [p, q] and [r, s] cross (they must cross properly), canonical in the order of
 // the four arguments and of the two segments.
 Point crossing(Point p, Point q, Point r, Point s);

@@ -76,6 +76,18 @@ class Worker {
     solid_used_ = used_dofs(multiplier, opt.solid_components);
     fvals_.resize(static_cast<size_t>(nf_) * ncf_ * 3);
     svals_.resize(static_cast<size_t>(ns_) * ncs_ * 3);
+    // The batch path: affine triangles, both bases fitted, the chain rule (or no gradient term).
+    batch_ = fluid_poly_.fitted() && solid_poly_.fitted() &&
+             (opt.gradient == CouplingOptions::Gradient::Chain || opt.c1 == 0);
+    gradients_ = opt.c1 != 0;
+    if (batch_) {
+      fwidth_ = static_cast<int>(fluid_poly_.functions().size());
+      swidth_ = static_cast<int>(solid_poly_.functions().size());
+      for (size_t p = 0; p < np; ++p) {
+        pair_fluid_.push_back(index_in(fluid_poly_.functions(), opt.fluid_components[p], ncf_, frange_[p]));
+        pair_solid_.push_back(index_in(solid_poly_.functions(), opt.solid_components[p], ncs_, srange_[p]));
+      }
+    }
     sdofs_.resize(ns_);
     fcol_.resize(nf_);
   }
@@ -171,7 +183,19 @@ class Worker {
     return outside;
   }
 
+  // The positions, in the fitted functions' list, of component c's functions on local dofs [first, last).
+  static std::vector<int> index_in(const std::vector<int>& functions, int c, int nc, Range dofs) {
+    std::vector<int> out;
+    for (int d = dofs.first; d < dofs.last; ++d)
+      out.push_back(static_cast<int>(std::find(functions.begin(), functions.end(), d * nc + c) - functions.begin()));
+    return out;
+  }
+
   void integrate_piece(const MappedTriangle& mt, int kf, const Piece& piece, int degree) {
+    if (batch_ && mt.affine) {
+      integrate_affine_piece(mt, kf, piece);
+      return;
+    }
     ++report_.pieces;
     fluid_columns(kf);
     const auto& rule = triangle_rule(degree);
@@ -187,6 +211,82 @@ class Worker {
         fluid_poly_.evaluate(kf, fluid_poly_.to_reference(kf, y), fvals_.data());
         solid_poly_.evaluate(mt.k, xi, svals_.data());
         accumulate(area * q.weight / det, mv.jac);
+      }
+    }
+  }
+
+  // Affine map on the triangle, fitted bases: the rule's points on the piece's fan are gathered with their
+  // reference coordinates in the fluid element (eta) and the solid element (xi), both affine in y, so
+  // interpolated from the piece's corners; then each basis is evaluated on all points at once and every
+  // entry of the block gets one weighted sum,
+  //   block_ij += sum_q w_q [c2 psi_i phi_j + c1 grad psi_i . (grad phi_j dX/ds)],  w_q = area weight / det.
+  void integrate_affine_piece(const MappedTriangle& mt, int kf, const Piece& piece) {
+    ++report_.pieces;
+    fluid_columns(kf);
+    const auto& rule = triangle_rule(report_.rule_degree);
+    Point eta[Piece::kMaxVertices], xi[Piece::kMaxVertices];
+    MapValue unused;
+    for (int v = 0; v < piece.n; ++v) {
+      eta[v] = fluid_poly_.to_reference(kf, piece.v[v]);
+      xi[v] = mt.pull_back(piece.v[v], unused);
+    }
+    const size_t n = static_cast<size_t>(piece.n - 2) * rule.size();
+    if (weight_.size() < n) {
+      weight_.resize(n);
+      peta_.resize(n);
+      pxi_.resize(n);
+      fbatch_.resize(3 * n * fwidth_);
+      sbatch_.resize(3 * n * swidth_);
+    }
+    size_t q = 0;
+    for (int t = 1; t + 1 < piece.n; ++t) {
+      const double area = 0.5 * area2(piece.v[0], piece.v[t], piece.v[t + 1]) / mt.affine_det;
+      const Point et[3] = {eta[0], eta[t], eta[t + 1]}, xt[3] = {xi[0], xi[t], xi[t + 1]};
+      for (const RulePoint& r : rule) {
+        weight_[q] = area * r.weight;
+        peta_[q] = from_reference(et, r.xi);
+        pxi_[q] = from_reference(xt, r.xi);
+        ++q;
+      }
+    }
+    const int np = static_cast<int>(n);
+    report_.points += np;
+    double* fv = fbatch_.data();
+    double* sv = sbatch_.data();
+    const size_t fn = n * fwidth_, sn = n * swidth_;
+    fluid_poly_.evaluate_points(kf, peta_.data(), np, fv, gradients_ ? fv + fn : nullptr, gradients_ ? fv + 2 * fn : nullptr);
+    solid_poly_.evaluate_points(mt.k, pxi_.data(), np, sv, gradients_ ? sv + sn : nullptr, gradients_ ? sv + 2 * sn : nullptr);
+    // Fluid values and chain-rule gradients with the weights folded in, per function along the points.
+    const double c2 = opt_.c2;
+    const double(&jac)[2][2] = mt.affine_value.jac;
+    for (size_t f = 0; f < static_cast<size_t>(fwidth_); ++f) {
+      double* v = fv + f * n;
+      for (size_t k = 0; k < n; ++k) v[k] *= c2 * weight_[k];
+      if (!gradients_) continue;
+      double *gx = fv + fn + f * n, *gy = fv + 2 * fn + f * n;
+      for (size_t k = 0; k < n; ++k) {
+        // grad_s (phi o X)_b = sum_a d_a phi dX_a/ds_b
+        const double w = opt_.c1 * weight_[k];
+        const double g0 = gx[k] * jac[0][0] + gy[k] * jac[1][0], g1 = gx[k] * jac[0][1] + gy[k] * jac[1][1];
+        gx[k] = w * g0;
+        gy[k] = w * g1;
+      }
+    }
+    for (size_t p = 0; p < pair_fluid_.size(); ++p) {
+      const std::vector<int>&fi = pair_fluid_[p], &si = pair_solid_[p];
+      for (size_t a = 0; a < fi.size(); ++a) {
+        const double* phi = fv + static_cast<size_t>(fi[a]) * n;
+        double* col = &block_[static_cast<size_t>(fcol_[frange_[p].first + static_cast<int>(a)]) * ns_ + srange_[p].first];
+        for (size_t b = 0; b < si.size(); ++b) {
+          const double* psi = sv + static_cast<size_t>(si[b]) * n;
+          double sum = 0;
+          for (size_t k = 0; k < n; ++k) sum += psi[k] * phi[k];
+          if (gradients_) {
+            const double *px = psi + sn, *py = psi + 2 * sn, *gx = phi + fn, *gy = phi + 2 * fn;
+            for (size_t k = 0; k < n; ++k) sum += px[k] * gx[k] + py[k] * gy[k];
+          }
+          col[b] += sum;
+        }
       }
     }
   }
@@ -320,6 +420,12 @@ class Worker {
   std::vector<int> fluid_used_, solid_used_;
   std::vector<double> fvals_, svals_, block_;  // block_: column-major, ns_ rows per column
   std::vector<int> sdofs_, fcol_, columns_;
+  // batch path
+  bool batch_ = false, gradients_ = false;
+  int fwidth_ = 0, swidth_ = 0;
+  std::vector<std::vector<int>> pair_fluid_, pair_solid_;  // per pair: fitted-function index of each local dof
+  std::vector<double> weight_, fbatch_, sbatch_;
+  std::vector<Point> peta_, pxi_;
 };
 
 // Components named on one side must exist in that side's space.

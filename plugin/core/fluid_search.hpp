@@ -48,8 +48,9 @@ class FluidSearch {
   // Calls visit(k, piece) once for every fluid triangle k whose interior meets the interior of the
   // counter-clockwise triangle t, with piece = t ∩ k. Advancing front: from the triangle holding t's
   // centroid, across fluid edges while pieces are non-empty (the triangles meeting a convex set are
-  // edge-connected through such triangles); the grid when the centroid is outside the fluid mesh, and
-  // after the walk when a visited triangle has a boundary edge (t may re-enter a non-convex mesh).
+  // edge-connected through such triangles, and a path inside t crosses each edge where t reaches beyond
+  // it); the grid when the centroid is outside the fluid mesh, and after the walk when t reaches beyond a
+  // boundary edge of a visited triangle (t may re-enter a non-convex mesh).
   // hint: where the walk starts, updated to a triangle near t.
   template <class Visit>
   void for_each_piece(const Point t[3], int& hint, Visit&& visit);
@@ -76,9 +77,10 @@ void FluidSearch::for_each_piece(const Point t[3], int& hint, Visit&& visit) {
   const Point centroid{(t[0].x + t[1].x + t[2].x) / 3, (t[0].y + t[1].y + t[2].y) / 3};
   const int start = locate(centroid, hint);
   Point k_corners[3];
+  unsigned beyond;
   if (start >= 0) {
     fluid_.corners(start, k_corners);
-    Piece first = clip(t, k_corners);
+    Piece first = clip(t, k_corners, beyond);
     if (first.n > 0) {
       hint = start;
       queue_.clear();
@@ -90,16 +92,19 @@ void FluidSearch::for_each_piece(const Point t[3], int& hint, Visit&& visit) {
         Piece piece = first;
         if (q > 0) {
           fluid_.corners(k, k_corners);
-          piece = clip(t, k_corners);
+          piece = clip(t, k_corners, beyond);
           if (piece.n == 0) continue;
         }
         visit(k, piece);
-        for (int nb : fluid_.neighbours[k]) {
+        // Across edge i (opposite vertex i: clip's edge i + 1) only where t reaches beyond its line.
+        for (int i = 0; i < 3; ++i) {
+          if (!(beyond & (1u << ((i + 1) % 3)))) continue;
+          const int nb = fluid_.neighbours[k][i];
           if (nb < 0) at_boundary = true;
           else if (mark(nb)) queue_.push_back(nb);
         }
       }
-      // The walk reached every piece unless t leaves the fluid mesh through the boundary of a visited
+      // The walk reached every piece unless t leaves the fluid mesh across a boundary edge of a visited
       // triangle: on a non-convex mesh (a notch, a hole) t may come back in elsewhere, and the part of t
       // inside is then disconnected. The grid finds the other parts (the marks skip what the walk tested).
       if (!at_boundary) return;

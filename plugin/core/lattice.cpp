@@ -56,21 +56,4 @@ const std::vector<double>& vandermonde_inverse(int d) {
   return table[d];
 }
 
-void monomials(int d, Point xi, double* value, double* d1, double* d2) {
-  double p1[kMaxLatticeDegree + 1], p2[kMaxLatticeDegree + 1];
-  p1[0] = p2[0] = 1;
-  for (int i = 1; i <= d; ++i) {
-    p1[i] = p1[i - 1] * xi.x;
-    p2[i] = p2[i - 1] * xi.y;
-  }
-  int m = 0;
-  for (int t = 0; t <= d; ++t)
-    for (int b = 0; b <= t; ++b, ++m) {
-      const int a = t - b;
-      value[m] = p1[a] * p2[b];
-      d1[m] = a > 0 ? a * p1[a - 1] * p2[b] : 0.0;
-      d2[m] = b > 0 ? b * p1[a] * p2[b - 1] : 0.0;
-    }
-}
-
 }  // namespace dlmfsi

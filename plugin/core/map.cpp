@@ -170,7 +170,18 @@ void MappedTriangle::prepare(const Mesh& solid_mesh, const SolidMap& map, int kk
   }
   const Point ref[3] = {{0, 0}, {1, 0}, {0, 1}};
   for (int i = 0; i < 3; ++i) {
-    image[i] = at(ref[i]).x;
+    if (degree_ >= 1) {
+      // At the corners every monomial but the powers of one coordinate vanishes: sum their coefficients
+      // (monomial xi1^(t-b) xi2^b is number t(t+1)/2 + b).
+      image[i] = {0, 0};
+      for (int t = 0; t <= degree_; ++t) {
+        const int m = t * (t + 1) / 2 + (i == 2 ? t : 0);
+        if (t > 0 && i == 0) break;
+        image[i] = image[i] + Point{cx_[m], cy_[m]};
+      }
+    } else {
+      image[i] = map.evaluate(k, ref[i]).x;
+    }
     if (!finite(image[i])) throw Error("the map is NaN or Inf at a corner of " + name(k));
   }
   const int o = orient2d(image[0], image[1], image[2]);

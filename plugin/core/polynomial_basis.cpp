@@ -141,4 +141,52 @@ void PolynomialBasis::evaluate(int k, Point xi, double* out) const {
   }
 }
 
+template <int NM>
+void PolynomialBasis::evaluate_points_fitted(int k, const Point* xi, int n, double* value, double* dx,
+                                             double* dy) const {
+  const int nm = NM > 0 ? NM : nm_;
+  const int degree = NM == 1 ? 0 : NM == 3 ? 1 : NM == 6 ? 2 : NM == 10 ? 3 : degree_;
+  const size_t width = functions_.size();
+  const double* coef = coefficients(k);
+  const double* j = &inverse_jacobian_[4 * static_cast<size_t>(k)];
+  double v[monomial_count(kMaxLatticeDegree)], d1[monomial_count(kMaxLatticeDegree)], d2[monomial_count(kMaxLatticeDegree)];
+  if (!dx) {  // values only
+    for (int p = 0; p < n; ++p) {
+      monomial_values(degree, xi[p], v);
+      const double* c = coef;
+      for (size_t f = 0; f < width; ++f, c += nm) {
+        double val = 0;
+        for (int m = 0; m < nm; ++m) val += c[m] * v[m];
+        value[f * n + p] = val;
+      }
+    }
+    return;
+  }
+  for (int p = 0; p < n; ++p) {
+    monomials(degree, xi[p], v, d1, d2);
+    const double* c = coef;
+    for (size_t f = 0; f < width; ++f, c += nm) {
+      double val = 0, g1 = 0, g2 = 0;
+      for (int m = 0; m < nm; ++m) {
+        val += c[m] * v[m];
+        g1 += c[m] * d1[m];
+        g2 += c[m] * d2[m];
+      }
+      value[f * n + p] = val;
+      dx[f * n + p] = g1 * j[0] + g2 * j[2];
+      dy[f * n + p] = g1 * j[1] + g2 * j[3];
+    }
+  }
+}
+
+void PolynomialBasis::evaluate_points(int k, const Point* xi, int n, double* value, double* dx, double* dy) const {
+  switch (degree_) {
+    case 0: evaluate_points_fitted<1>(k, xi, n, value, dx, dy); break;
+    case 1: evaluate_points_fitted<3>(k, xi, n, value, dx, dy); break;
+    case 2: evaluate_points_fitted<6>(k, xi, n, value, dx, dy); break;
+    case 3: evaluate_points_fitted<10>(k, xi, n, value, dx, dy); break;
+    default: evaluate_points_fitted<0>(k, xi, n, value, dx, dy); break;
+  }
+}
+
 }  // namespace dlmfsi

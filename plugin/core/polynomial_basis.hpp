@@ -24,6 +24,11 @@ class PolynomialBasis {
   // Safe to call from several threads when fitted() (no call into the basis then).
   void evaluate(int k, Point xi, double* out) const;
 
+  // The fitted functions at n points of element k at once (fitted() only), monomials formed once per point:
+  // value[f * n + p] for the f-th of functions() at point p, and when dx and dy are not null the physical
+  // first derivatives in the same layout.
+  void evaluate_points(int k, const Point* xi, int n, double* value, double* dx, double* dy) const;
+
   // The reference coordinates of point x in element k (the inverse of the element's affine map).
   Point to_reference(int k, Point x) const;
 
@@ -40,6 +45,8 @@ class PolynomialBasis {
   template <int NM>
   void evaluate_fitted(const double* coef, const double* jac, const double* v, const double* d1, const double* d2,
                        double* out) const;
+  template <int NM>
+  void evaluate_points_fitted(int k, const Point* xi, int n, double* value, double* dx, double* dy) const;
   const Basis& basis_;
   const Mesh& mesh_;
   int degree_, nm_, nc_;
