@@ -80,6 +80,7 @@ class Worker {
     batch_ = fluid_poly_.fitted() && solid_poly_.fitted() &&
              (opt.gradient == CouplingOptions::Gradient::Chain || opt.c1 == 0);
     gradients_ = opt.c1 != 0;
+    affine_rule_ = &triangle_rule(report_.rule_degree);
     if (batch_) {
       fwidth_ = static_cast<int>(fluid_poly_.functions().size());
       swidth_ = static_cast<int>(solid_poly_.functions().size());
@@ -223,12 +224,11 @@ class Worker {
   void integrate_affine_piece(const MappedTriangle& mt, int kf, const Piece& piece) {
     ++report_.pieces;
     fluid_columns(kf);
-    const auto& rule = triangle_rule(report_.rule_degree);
+    const auto& rule = *affine_rule_;
     Point eta[Piece::kMaxVertices], xi[Piece::kMaxVertices];
-    MapValue unused;
     for (int v = 0; v < piece.n; ++v) {
       eta[v] = fluid_poly_.to_reference(kf, piece.v[v]);
-      xi[v] = mt.pull_back(piece.v[v], unused);
+      xi[v] = mt.affine_reference(piece.v[v]);
     }
     const size_t n = static_cast<size_t>(piece.n - 2) * rule.size();
     if (weight_.size() < n) {
@@ -422,6 +422,7 @@ class Worker {
   std::vector<int> sdofs_, fcol_, columns_;
   // batch path
   bool batch_ = false, gradients_ = false;
+  const std::vector<RulePoint>* affine_rule_ = nullptr;  // exact for the product of the bases
   int fwidth_ = 0, swidth_ = 0;
   std::vector<std::vector<int>> pair_fluid_, pair_solid_;  // per pair: fitted-function index of each local dof
   std::vector<double> weight_, fbatch_, sbatch_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -32,9 +33,13 @@ FieldMap::FieldMap(const Mesh& solid, const Basis& space_x, const double* coef_x
   // X on triangle k = sum over the component's dofs of (dof value) * (basis polynomial).
   const int nm = monomial_count(degree_);
   monomial_coef_.assign(static_cast<size_t>(solid.size()) * 2 * nm, 0.0);
+  std::unique_ptr<PolynomialBasis> fit;
   for (int a = 0; a < 2; ++a) {
     const Part& p = part_[a];
-    PolynomialBasis poly(*p.space, solid, degree_, {p.comp});
+    // X and Y are often the same space and component (two functions of one scalar space): one fit.
+    if (a == 0 || p.space != part_[0].space || p.comp != part_[0].comp)
+      fit = std::make_unique<PolynomialBasis>(*p.space, solid, degree_, std::vector<int>{p.comp});
+    const PolynomialBasis& poly = *fit;
     if (!poly.fitted()) {
       degree_ = -1;
       monomial_coef_.clear();
@@ -253,8 +258,7 @@ void MappedTriangle::classify() {
 }
 
 Point MappedTriangle::pull_back(Point y, MapValue& value) const {
-  const Point dy = y - image[0];
-  Point xi{image_inv_[0][0] * dy.x + image_inv_[0][1] * dy.y, image_inv_[1][0] * dy.x + image_inv_[1][1] * dy.y};
+  Point xi = affine_reference(y);
   if (affine) {
     value = affine_value;
     value.x = y;

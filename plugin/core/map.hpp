@@ -74,6 +74,13 @@ class MappedTriangle {
   // Throws Error if it fails to converge or the jacobian determinant is not positive (a folded map).
   Point pull_back(Point y, MapValue& value) const;
 
+  // The reference point of y under the affine interpolant of the corner images (for affine triangles, the
+  // pull-back itself).
+  Point affine_reference(Point y) const {
+    const Point d = y - image[0];
+    return {image_inv_[0][0] * d.x + image_inv_[0][1] * d.y, image_inv_[1][0] * d.x + image_inv_[1][1] * d.y};
+  }
+
  private:
   // Sets affine and straight by sampling X at edge and interior points.
   void classify();

@@ -98,12 +98,6 @@ void PolynomialBasis::check(int k) {
   }
 }
 
-Point PolynomialBasis::to_reference(int k, Point x) const {
-  const double* j = &inverse_jacobian_[4 * static_cast<size_t>(k)];
-  const Point d = x - mesh_.vertex(k, 0);
-  return {j[0] * d.x + j[1] * d.y, j[2] * d.x + j[3] * d.y};
-}
-
 template <int NM>
 void PolynomialBasis::evaluate_fitted(const double* coef, const double* j, const double* v, const double* d1,
                                       const double* d2, double* out) const {

@@ -5,6 +5,7 @@
 // single basis evaluation at a generic point, and fitted on its own only where it differs (e.g. where dof
 // orientation or sign depends on the element). All elements are checked at construction.
 #pragma once
+#include <cstddef>
 #include <vector>
 
 #include "basis.hpp"
@@ -30,7 +31,11 @@ class PolynomialBasis {
   void evaluate_points(int k, const Point* xi, int n, double* value, double* dx, double* dy) const;
 
   // The reference coordinates of point x in element k (the inverse of the element's affine map).
-  Point to_reference(int k, Point x) const;
+  Point to_reference(int k, Point x) const {
+    const double* j = &inverse_jacobian_[4 * static_cast<size_t>(k)];
+    const Point d = x - mesh_.vertex(k, 0);
+    return {j[0] * d.x + j[1] * d.y, j[2] * d.x + j[3] * d.y};
+  }
 
   bool fitted() const { return degree_ >= 0; }
   int degree() const { return degree_; }

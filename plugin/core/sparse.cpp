@@ -12,32 +12,53 @@ double CsrMatrix::at(int i, int j) const {
 }
 
 CsrMatrix compress(int rows, int cols, const std::vector<std::vector<Triplet>>& parts) {
-  // Counting sort by row, then sort and merge each row.
+  // Counting sort by row (stable: the parts' order is kept within a row, so sums come out the same for any
+  // thread count), then per row duplicates summed through a column -> position table, and the row's few
+  // distinct columns sorted.
   std::vector<int> offset(rows + 1, 0);
   for (const auto& p : parts)
     for (const Triplet& t : p) ++offset[t.row + 1];
   for (int i = 0; i < rows; ++i) offset[i + 1] += offset[i];
-  std::vector<std::pair<int, double>> bucket(offset.back());
+  std::vector<int> bucket_col(offset.back());
+  std::vector<double> bucket_value(offset.back());
   std::vector<int> fill(offset.begin(), offset.end() - 1);
   for (const auto& p : parts)
-    for (const Triplet& t : p) bucket[fill[t.row]++] = {t.col, t.value};
+    for (const Triplet& t : p) {
+      const int at = fill[t.row]++;
+      bucket_col[at] = t.col;
+      bucket_value[at] = t.value;
+    }
 
   CsrMatrix m;
   m.rows = rows;
   m.cols = cols;
   m.start.assign(rows + 1, 0);
-  m.column.reserve(bucket.size());
-  m.value.reserve(bucket.size());
+  m.column.reserve(bucket_col.size());
+  m.value.reserve(bucket_col.size());
+  std::vector<int> position(cols, -1);  // where column c sits in m.column, if in the current row
   for (int i = 0; i < rows; ++i) {
-    auto b = bucket.begin() + offset[i], e = bucket.begin() + offset[i + 1];
-    std::sort(b, e, [](const auto& x, const auto& y) { return x.first < y.first; });
-    for (auto it = b; it != e; ++it) {
-      if (!m.column.empty() && static_cast<int>(m.column.size()) > m.start[i] && m.column.back() == it->first)
-        m.value.back() += it->second;
-      else {
-        m.column.push_back(it->first);
-        m.value.push_back(it->second);
+    const int begin = static_cast<int>(m.column.size());
+    for (int e = offset[i]; e < offset[i + 1]; ++e) {
+      const int c = bucket_col[e];
+      if (position[c] >= begin) {
+        m.value[position[c]] += bucket_value[e];
+      } else {
+        position[c] = static_cast<int>(m.column.size());
+        m.column.push_back(c);
+        m.value.push_back(bucket_value[e]);
       }
+    }
+    // insertion sort of the row by column (a row holds a handful of entries)
+    for (int k = begin + 1; k < static_cast<int>(m.column.size()); ++k) {
+      const int c = m.column[k];
+      const double v = m.value[k];
+      int j = k;
+      for (; j > begin && m.column[j - 1] > c; --j) {
+        m.column[j] = m.column[j - 1];
+        m.value[j] = m.value[j - 1];
+      }
+      m.column[j] = c;
+      m.value[j] = v;
     }
     m.start[i + 1] = static_cast<int>(m.column.size());
   }

@@ -17,8 +17,8 @@ struct CsrMatrix {
   double at(int i, int j) const;  // 0 where there is no entry
 };
 
-// Sums duplicate (row, col) entries; columns sorted within each row. Linear in the number of triplets
-// plus the per-row sorts.
+// Sums duplicate (row, col) entries, in the order given; columns sorted within each row. Linear in the
+// number of triplets plus the sorts of each row's distinct columns.
 CsrMatrix compress(int rows, int cols, const std::vector<std::vector<Triplet>>& parts);
 
 }  // namespace dlmfsi
