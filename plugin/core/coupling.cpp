@@ -1,6 +1,7 @@
 #include "coupling.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -76,7 +77,7 @@ class Worker {
     solid_used_ = used_dofs(multiplier, opt.solid_components);
     fvals_.resize(static_cast<size_t>(nf_) * ncf_ * 3);
     svals_.resize(static_cast<size_t>(ns_) * ncs_ * 3);
-    // The batch path: affine triangles, both bases fitted, the chain rule (or no gradient term).
+    // The batch path: both bases fitted, the chain rule (or no gradient term).
     batch_ = fluid_poly_.fitted() && solid_poly_.fitted() &&
              (opt.gradient == CouplingOptions::Gradient::Chain || opt.c1 == 0);
     gradients_ = opt.c1 != 0;
@@ -193,8 +194,8 @@ class Worker {
   }
 
   void integrate_piece(const MappedTriangle& mt, int kf, const Piece& piece, int degree) {
-    if (batch_ && mt.affine) {
-      integrate_affine_piece(mt, kf, piece);
+    if (batch_) {
+      integrate_piece_batch(mt, kf, piece, degree);
       return;
     }
     ++report_.pieces;
@@ -216,36 +217,48 @@ class Worker {
     }
   }
 
-  // Affine map on the triangle, fitted bases: the rule's points on the piece's fan are gathered with their
-  // reference coordinates in the fluid element (eta) and the solid element (xi), both affine in y, so
-  // interpolated from the piece's corners; then each basis is evaluated on all points at once and every
-  // entry of the block gets one weighted sum,
+  // Fitted bases: the rule's points on the piece's fan are gathered with their reference coordinates in
+  // the fluid element (eta, affine in y: interpolated from the piece's corners) and in the solid element
+  // (xi: interpolated too where the map is affine on the triangle; otherwise Newton's pull-back, started
+  // from that interpolation between the corners' pull-backs); then each basis is evaluated on all points at
+  // once and every entry of the block gets one weighted sum,
   //   block_ij += sum_q w_q [c2 psi_i phi_j + c1 grad psi_i . (grad phi_j dX/ds)],  w_q = area weight / det.
-  void integrate_affine_piece(const MappedTriangle& mt, int kf, const Piece& piece) {
+  void integrate_piece_batch(const MappedTriangle& mt, int kf, const Piece& piece, int degree) {
     ++report_.pieces;
     fluid_columns(kf);
-    const auto& rule = *affine_rule_;
+    const auto& rule = mt.affine ? *affine_rule_ : triangle_rule(degree);
     Point eta[Piece::kMaxVertices], xi[Piece::kMaxVertices];
+    MapValue mv;
     for (int v = 0; v < piece.n; ++v) {
       eta[v] = fluid_poly_.to_reference(kf, piece.v[v]);
-      xi[v] = mt.affine_reference(piece.v[v]);
+      xi[v] = mt.affine ? mt.affine_reference(piece.v[v]) : mt.pull_back(piece.v[v], mv);
     }
     const size_t n = static_cast<size_t>(piece.n - 2) * rule.size();
     if (weight_.size() < n) {
       weight_.resize(n);
       peta_.resize(n);
       pxi_.resize(n);
+      pjac_.resize(n);
       fbatch_.resize(3 * n * fwidth_);
       sbatch_.resize(3 * n * swidth_);
     }
     size_t q = 0;
     for (int t = 1; t + 1 < piece.n; ++t) {
-      const double area = 0.5 * area2(piece.v[0], piece.v[t], piece.v[t + 1]) / mt.affine_det;
+      const Point tri[3] = {piece.v[0], piece.v[t], piece.v[t + 1]};
+      const double area = 0.5 * area2(tri[0], tri[1], tri[2]);
       const Point et[3] = {eta[0], eta[t], eta[t + 1]}, xt[3] = {xi[0], xi[t], xi[t + 1]};
       for (const RulePoint& r : rule) {
-        weight_[q] = area * r.weight;
         peta_[q] = from_reference(et, r.xi);
         pxi_[q] = from_reference(xt, r.xi);
+        if (mt.affine) {
+          weight_[q] = area * r.weight / mt.affine_det;
+        } else {
+          pxi_[q] = mt.pull_back(from_reference(tri, r.xi), pxi_[q], mv);
+          const double det = det2(mv.jac);
+          if (!(det > 0)) throw Error("the map folds solid triangle " + std::to_string(mt.k));
+          weight_[q] = area * r.weight / det;
+          pjac_[q] = {mv.jac[0][0], mv.jac[0][1], mv.jac[1][0], mv.jac[1][1]};
+        }
         ++q;
       }
     }
@@ -258,16 +271,18 @@ class Worker {
     solid_poly_.evaluate_points(mt.k, pxi_.data(), np, sv, gradients_ ? sv + sn : nullptr, gradients_ ? sv + 2 * sn : nullptr);
     // Fluid values and chain-rule gradients with the weights folded in, per function along the points.
     const double c2 = opt_.c2;
-    const double(&jac)[2][2] = mt.affine_value.jac;
+    const double(&aj)[2][2] = mt.affine_value.jac;
+    const std::array<double, 4> affine_jac{aj[0][0], aj[0][1], aj[1][0], aj[1][1]};
     for (size_t f = 0; f < static_cast<size_t>(fwidth_); ++f) {
       double* v = fv + f * n;
       for (size_t k = 0; k < n; ++k) v[k] *= c2 * weight_[k];
       if (!gradients_) continue;
       double *gx = fv + fn + f * n, *gy = fv + 2 * fn + f * n;
       for (size_t k = 0; k < n; ++k) {
-        // grad_s (phi o X)_b = sum_a d_a phi dX_a/ds_b
+        // grad_s (phi o X)_b = sum_a d_a phi dX_a/ds_b, jac = (dX_0/ds_0, dX_0/ds_1, dX_1/ds_0, dX_1/ds_1)
+        const std::array<double, 4>& jac = mt.affine ? affine_jac : pjac_[k];
         const double w = opt_.c1 * weight_[k];
-        const double g0 = gx[k] * jac[0][0] + gy[k] * jac[1][0], g1 = gx[k] * jac[0][1] + gy[k] * jac[1][1];
+        const double g0 = gx[k] * jac[0] + gy[k] * jac[2], g1 = gx[k] * jac[1] + gy[k] * jac[3];
         gx[k] = w * g0;
         gy[k] = w * g1;
       }
@@ -427,6 +442,7 @@ class Worker {
   std::vector<std::vector<int>> pair_fluid_, pair_solid_;  // per pair: fitted-function index of each local dof
   std::vector<double> weight_, fbatch_, sbatch_;
   std::vector<Point> peta_, pxi_;
+  std::vector<std::array<double, 4>> pjac_;
 };
 
 // Components named on one side must exist in that side's space.

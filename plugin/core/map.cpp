@@ -107,22 +107,40 @@ std::string name(int k) { return "solid triangle " + std::to_string(k); }
 
 }  // namespace
 
-void MappedTriangle::polynomial(Point xi, Point& x, Point& dx1, Point& dx2) const {
-  double v[monomial_count(kMaxDegree)], d1[monomial_count(kMaxDegree)], d2[monomial_count(kMaxDegree)];
-  monomials(degree_, xi, v, d1, d2);
+namespace {
+
+// X and its reference derivatives from the monomial coefficients; D >= 0 a constant degree (loops unrolled),
+// D < 0 the run-time degree d.
+template <int D>
+void evaluate_polynomial(int d, const double* cx, const double* cy, Point xi, Point& x, Point& dx1, Point& dx2) {
+  const int degree = D >= 0 ? D : d;
+  double v[monomial_count(MappedTriangle::kMaxDegree)], d1[monomial_count(MappedTriangle::kMaxDegree)],
+      d2[monomial_count(MappedTriangle::kMaxDegree)];
+  monomials(degree, xi, v, d1, d2);
   // Local sums: the outputs may alias memory the compiler cannot keep in registers.
   double x0 = 0, x1 = 0, a0 = 0, a1 = 0, b0 = 0, b1 = 0;
-  for (int m = 0; m < monomial_count(degree_); ++m) {
-    x0 += cx_[m] * v[m];
-    x1 += cy_[m] * v[m];
-    a0 += cx_[m] * d1[m];
-    a1 += cy_[m] * d1[m];
-    b0 += cx_[m] * d2[m];
-    b1 += cy_[m] * d2[m];
+  for (int m = 0; m < monomial_count(degree); ++m) {
+    x0 += cx[m] * v[m];
+    x1 += cy[m] * v[m];
+    a0 += cx[m] * d1[m];
+    a1 += cy[m] * d1[m];
+    b0 += cx[m] * d2[m];
+    b1 += cy[m] * d2[m];
   }
   x = {x0, x1};
   dx1 = {a0, a1};
   dx2 = {b0, b1};
+}
+
+}  // namespace
+
+void MappedTriangle::polynomial(Point xi, Point& x, Point& dx1, Point& dx2) const {
+  switch (degree_) {
+    case 1: evaluate_polynomial<1>(1, cx_, cy_, xi, x, dx1, dx2); break;
+    case 2: evaluate_polynomial<2>(2, cx_, cy_, xi, x, dx1, dx2); break;
+    case 3: evaluate_polynomial<3>(3, cx_, cy_, xi, x, dx1, dx2); break;
+    default: evaluate_polynomial<-1>(degree_, cx_, cy_, xi, x, dx1, dx2); break;
+  }
 }
 
 MapValue MappedTriangle::at(Point xi) const {
@@ -258,12 +276,17 @@ void MappedTriangle::classify() {
 }
 
 Point MappedTriangle::pull_back(Point y, MapValue& value) const {
-  Point xi = affine_reference(y);
+  const Point xi = affine_reference(y);
   if (affine) {
     value = affine_value;
     value.x = y;
     return xi;
   }
+  return pull_back(y, xi, value);
+}
+
+Point MappedTriangle::pull_back(Point y, Point xi, MapValue& value) const {
+  if (affine) return pull_back(y, value);
   const Point e1 = solid[1] - solid[0], e2 = solid[2] - solid[0];
   double previous = 1e300;
   for (int it = 0; it < 40; ++it) {

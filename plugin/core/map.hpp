@@ -73,6 +73,8 @@ class MappedTriangle {
   // from the affine guess, stopping at |dxi| < 1e-12 or where the steps stall at the round-off floor.
   // Throws Error if it fails to converge or the jacobian determinant is not positive (a folded map).
   Point pull_back(Point y, MapValue& value) const;
+  // The same from a starting point near the answer (e.g. interpolated from pulled-back points nearby).
+  Point pull_back(Point y, Point guess, MapValue& value) const;
 
   // The reference point of y under the affine interpolant of the corner images (for affine triangles, the
   // pull-back itself).
