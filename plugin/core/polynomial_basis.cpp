@@ -59,6 +59,13 @@ PolynomialBasis::PolynomialBasis(const Basis& basis, const Mesh& mesh, int degre
     degree_ = -1;
     return;
   }
+  // Components of a vector space built from one scalar element carry the same polynomials: each function
+  // whose shared fit equals an earlier one's (bit for bit) is evaluated once, as that one's twin.
+  twin_.assign(functions_.size(), -1);
+  for (size_t f = 1; f < functions_.size(); ++f)
+    for (size_t g = 0; g < f && twin_[f] < 0; ++g)
+      if (twin_[g] < 0 && std::equal(&reference_[f * nm_], &reference_[f * nm_] + nm_, &reference_[g * nm_]))
+        twin_[f] = static_cast<int>(g);
   for (int k = 1; k < mesh.size(); ++k) check(k);
 }
 
@@ -144,22 +151,34 @@ void PolynomialBasis::evaluate_points_fitted(int k, const Point* xi, int n, doub
   const double* coef = coefficients(k);
   const double* j = &inverse_jacobian_[4 * static_cast<size_t>(k)];
   double v[monomial_count(kMaxLatticeDegree)], d1[monomial_count(kMaxLatticeDegree)], d2[monomial_count(kMaxLatticeDegree)];
+  const bool shared = slot_[k] < 0;
+  // the twins' rows: copies of the rows they repeat
+  auto copy_twins = [&] {
+    if (!shared) return;
+    for (size_t f = 0; f < width; ++f)
+      if (twin_[f] >= 0)
+        for (double* plane : {value, dx, dy})
+          if (plane) std::copy(plane + twin_[f] * n, plane + (twin_[f] + 1) * n, plane + f * n);
+  };
   if (!dx) {  // values only
     for (int p = 0; p < n; ++p) {
       monomial_values(degree, xi[p], v);
       const double* c = coef;
       for (size_t f = 0; f < width; ++f, c += nm) {
+        if (shared && twin_[f] >= 0) continue;
         double val = 0;
         for (int m = 0; m < nm; ++m) val += c[m] * v[m];
         value[f * n + p] = val;
       }
     }
+    copy_twins();
     return;
   }
   for (int p = 0; p < n; ++p) {
     monomials(degree, xi[p], v, d1, d2);
     const double* c = coef;
     for (size_t f = 0; f < width; ++f, c += nm) {
+      if (shared && twin_[f] >= 0) continue;
       double val = 0, g1 = 0, g2 = 0;
       for (int m = 0; m < nm; ++m) {
         val += c[m] * v[m];
@@ -171,6 +190,7 @@ void PolynomialBasis::evaluate_points_fitted(int k, const Point* xi, int n, doub
       dy[f * n + p] = g1 * j[1] + g2 * j[3];
     }
   }
+  copy_twins();
 }
 
 void PolynomialBasis::evaluate_points(int k, const Point* xi, int n, double* value, double* dx, double* dy) const {

@@ -57,6 +57,7 @@ class PolynomialBasis {
   int degree_, nm_, nc_;
   std::vector<int> functions_;
   std::vector<double> reference_;  // the shared fit
+  std::vector<int> twin_;          // per function: an earlier function with the same shared fit, or -1
   std::vector<int> slot_;          // per element: -1 shared fit, else offset in own_
   std::vector<double> own_;        // element fits that differ from the shared one
   std::vector<double> inverse_jacobian_;  // per element: d xi / d x, 4 entries (any basis: to_reference)
