@@ -21,6 +21,8 @@ class Basis {
   //   out[(df * components() + c) * 3 + d], d = 0 value, 1 d/dx, 2 d/dy.
   // Must be safe to call from several threads at once.
   virtual void evaluate(int k, Point xi, double* out) const = 0;
+  // The values alone, in the same layout (the derivative slots may be left unset). By default evaluate().
+  virtual void values(int k, Point xi, double* out) const { evaluate(k, xi, out); }
 };
 
 // The polynomial degree of the basis on triangle k, found by probing: along three lines through the

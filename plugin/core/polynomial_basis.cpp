@@ -74,7 +74,7 @@ void PolynomialBasis::fit(int k, double* c) {
   const size_t width = functions_.size();
   std::vector<double> values(static_cast<size_t>(nm_) * width);
   for (int q = 0; q < nm_; ++q) {
-    basis_.evaluate(k, lattice_point(degree_, q), sample_.data());
+    basis_.values(k, lattice_point(degree_, q), sample_.data());
     for (size_t f = 0; f < width; ++f) values[q * width + f] = sample_[functions_[f] * 3];
   }
   for (size_t f = 0; f < width; ++f)
@@ -89,7 +89,7 @@ void PolynomialBasis::check(int k) {
   // One evaluation decides whether element k shares the reference fit.
   double v[monomial_count(kMaxLatticeDegree)], d1[monomial_count(kMaxLatticeDegree)], d2[monomial_count(kMaxLatticeDegree)];
   monomials(degree_, kCheckPoint, v, d1, d2);
-  basis_.evaluate(k, kCheckPoint, sample_.data());
+  basis_.values(k, kCheckPoint, sample_.data());
   for (size_t f = 0; f < functions_.size(); ++f) {
     double s = 0, scale = 0;
     for (int m = 0; m < nm_; ++m) {

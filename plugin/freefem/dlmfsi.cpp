@@ -37,24 +37,32 @@ class SpaceBasis : public dlmfsi::Basis {
     for (int df = 0; df < nd_; ++df) global[df] = K(df);
   }
   void evaluate(int k, Point xi, double* out) const override {
+    static const bool what[last_operatortype] = {true, true, true, false, false, false, false, false, false, false};
+    basis_functions(k, xi, what, out);
+  }
+  void values(int k, Point xi, double* out) const override {
+    static const bool what[last_operatortype] = {true, false, false, false, false, false, false, false, false, false};
+    basis_functions(k, xi, what, out);
+  }
+
+ private:
+  // The operators asked for in what (op_id, op_dx, op_dy) into out; the others are left as they are.
+  void basis_functions(int k, Point xi, const bool* what, double* out) const {
     // FreeFEM's layout is (df, component, operator) with df fastest.
     thread_local std::vector<double> buffer;
     const size_t size = static_cast<size_t>(nd_) * nc_ * last_operatortype;
     if (buffer.size() < size) buffer.resize(size);
     KNMK_<double> fb(buffer.data(), nd_, nc_, last_operatortype);
-    static const bool what[last_operatortype] = {true, true, true, false, false, false, false, false, false, false};
     const FElement K = vh_[k];
     K.BF(what, R2(xi.x, xi.y), fb);
     for (int df = 0; df < nd_; ++df)
       for (int c = 0; c < nc_; ++c) {
         double* o = out + (df * nc_ + c) * 3;
         o[0] = fb(df, c, op_id);
-        o[1] = fb(df, c, op_dx);
-        o[2] = fb(df, c, op_dy);
+        if (what[op_dx]) o[1] = fb(df, c, op_dx);
+        if (what[op_dy]) o[2] = fb(df, c, op_dy);
       }
   }
-
- private:
   const FESpace& vh_;
   int nd_, nc_;
 };
@@ -214,7 +222,9 @@ AnyType DlmfsiOp::operator()(Stack stack) const {
     const dlmfsi::FluidSide& fluid = fluid_cache().get(*vf, opt.fluid_components);
     const dlmfsi::Mesh solid = dlmfsi_ff::convert(vs->Th);
     const SpaceBasis multiplier(*vs), map_x_basis(sx), map_y_basis(sy);
-    const dlmfsi::FieldMap map(solid, map_x_basis, &cx[0], px.second, map_y_basis, &cy[0], py.second);
+    // X and Y in one space: one basis object, so that the map fits that space once
+    const SpaceBasis& map_y_space = &sx == &sy ? map_x_basis : map_y_basis;
+    const dlmfsi::FieldMap map(solid, map_x_basis, &cx[0], px.second, map_y_space, &cy[0], py.second);
     dlmfsi::CouplingReport report;
     dlmfsi::CsrMatrix b = dlmfsi::assemble_coupling(fluid, solid, multiplier, map, opt, &report);
     if (verbosity > 1) cout << report.summary() << endl;
