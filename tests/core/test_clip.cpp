@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -175,4 +176,70 @@ TEST(ClipTiling, FluidTrianglePiecesTileTheCoveredPart) {
     sum += clip(s, f).area();
   }
   EXPECT_NEAR(sum, tri_area(f), 1e-15);
+}
+
+// The edges a reaches beyond, against the orientations taken one by one; a inside closed b gives a itself.
+TEST(Clip, BeyondMarksTheEdgesWithAVertexOutside) {
+  std::mt19937_64 rng(17);
+  Point a[3], b[3];
+  int checked = 0, whole = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    if (!random_pair(rng, a, b)) continue;
+    if (trial % 3 == 0)  // a small triangle, often inside b
+      for (int i = 0; i < 3; ++i) a[i] = {b[0].x + 0.1 * (a[i].x - 0.5) + 0.3 * (b[1].x - b[0].x),
+                                          b[0].y + 0.1 * (a[i].y - 0.5) + 0.3 * (b[2].y - b[0].y)};
+    ccw(a);
+    unsigned beyond = 0;
+    const Piece p = clip(a, b, beyond);
+    if (p.n == 0) continue;
+    ++checked;
+    unsigned expected = 0;
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i)
+        if (orient2d(b[j], b[(j + 1) % 3], a[i]) < 0) expected |= 1u << j;
+    ASSERT_EQ(beyond, expected);
+    if (expected == 0) {
+      ++whole;
+      ASSERT_EQ(p.n, 3);
+      for (int i = 0; i < 3; ++i)  // a's own vertices, bit for bit
+        EXPECT_TRUE(p.v[0] == a[i] || p.v[1] == a[i] || p.v[2] == a[i]);
+    }
+    ASSERT_NEAR(p.area(), static_cast<double>(reference_area(a, b)), 1e-13);
+  }
+  EXPECT_GT(checked, 1000);
+  EXPECT_GT(whole, 100);
+}
+
+// The advancing front follows only the edges a solid triangle reaches beyond: it must still visit exactly
+// the fluid triangles whose clip is non-empty (brute force over the whole mesh), solid vertices on fluid
+// vertices and edges included.
+TEST(Search, PiecesMatchBruteForceOverTheMesh) {
+  Mesh fluid = test::grid_mesh(12, 9, 0, 0, 1.2, 0.9, true);
+  FluidGrid grid(fluid);
+  FluidSearch search(grid);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.05, 0.85), size(0.001, 0.4);
+  std::uniform_int_distribution<int> vertex(0, static_cast<int>(fluid.vertices.size()) - 1);
+  int hint = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    Point t[3];
+    const Point c{u(rng), u(rng)};
+    const double s = size(rng);
+    for (int i = 0; i < 3; ++i) t[i] = {c.x + s * (u(rng) - 0.45), c.y + s * (u(rng) - 0.45)};
+    if (trial % 4 == 0) t[0] = fluid.vertices[vertex(rng)];  // on a fluid vertex
+    if (trial % 4 == 1) t[1] = {0.1 * std::floor(10 * c.x), t[1].y};  // on a fluid grid line
+    bool inside_square = true;
+    for (const Point& p : t) inside_square = inside_square && p.x >= 0 && p.x <= 1.2 && p.y >= 0 && p.y <= 0.9;
+    if (!inside_square || orient2d(t[0], t[1], t[2]) == 0) continue;
+    ccw(t);
+    std::vector<int> found, expected;
+    search.for_each_piece(t, hint, [&](int k, const Piece&) { found.push_back(k); });
+    for (int k = 0; k < fluid.size(); ++k) {
+      Point f[3];
+      fluid.corners(k, f);
+      if (clip(t, f).n > 0) expected.push_back(k);
+    }
+    std::sort(found.begin(), found.end());
+    ASSERT_EQ(found, expected) << "trial " << trial;
+  }
 }
