@@ -188,3 +188,66 @@ TEST(Coupling, QuadratureMethodConvergesToTheExactValue) {
   }
   EXPECT_LT(previous, 1e-3 * std::fabs(exact));
 }
+
+namespace {
+
+// One function per fluid triangle, x^9 (physical x): a polynomial above the degree the bases are fitted to
+// (8), so the assembly evaluates it point by point rather than in batches.
+class PowerNine : public Basis {
+ public:
+  explicit PowerNine(const Mesh& m) : m_(m) {}
+  int components() const override { return 1; }
+  int dof_count() const override { return m_.size(); }
+  int local_dofs() const override { return 1; }
+  void component_dofs(int, int& f, int& l) const override { f = 0; l = 1; }
+  void dofs(int k, int* g) const override { g[0] = k; }
+  void evaluate(int k, Point xi, double* out) const override {
+    Point c[3];
+    m_.corners(k, c);
+    const double x = from_reference(c, xi).x;
+    out[0] = std::pow(x, 9);
+    out[1] = 9 * std::pow(x, 8);
+    out[2] = 0;
+  }
+
+ private:
+  const Mesh& m_;
+};
+
+}  // namespace
+
+// The point-by-point path (a basis that is not fitted): sum_ij B_ij = int over the mapped solid of x^9,
+// which Green's theorem gives independently as the boundary integral of x^10/10 dy, exact for the
+// polygon X(solid) (the solid is a rotated rectangle).
+TEST(Coupling, UnfittedBasisIntegratesExactly) {
+  Mesh fluid = test::grid_mesh(11, 9, 0, 0, 1.1, 0.9, true);
+  Mesh solid = test::grid_mesh(5, 4, 0.35, 0.3, 0.4, 0.3);
+  const double angle = 0.4;
+  Rotation r{std::cos(angle), std::sin(angle), 0.25, -0.2};
+  test::AffineMap map(solid, r.c, -r.s, r.s, r.c, r.bx, r.by);
+  PowerNine vf(fluid);
+  test::P1 vs(solid);
+  CouplingOptions opt;
+  opt.c1 = 0;
+  opt.c2 = 1;
+  CouplingReport rep;
+  const CsrMatrix b = assemble_coupling(fluid, vf, solid, vs, map, opt, &rep);
+  EXPECT_EQ(rep.fluid_degree, 9);
+  std::vector<double> one_f(fluid.size(), 1), one_s(solid.vertices.size(), 1);
+  // counter-clockwise corners of the mapped rectangle [0.35, 0.75] x [0.3, 0.6]
+  const Point corner[4] = {r({0.35, 0.3}), r({0.75, 0.3}), r({0.75, 0.6}), r({0.35, 0.6})};
+  long double want = 0;
+  for (int e = 0; e < 4; ++e) {
+    // int_edge x^10/10 dy with x, y linear along the edge: exact by 6-point Gauss-Legendre
+    const Point p = corner[e], q = corner[(e + 1) % 4];
+    const long double nodes[3] = {0.2386191860831969086305017L, 0.6612093864662645136613996L, 0.9324695142031520278123016L};
+    const long double weights[3] = {0.4679139345726910473898703L, 0.3607615730481386075698335L, 0.1713244923791703450402961L};
+    for (int g = 0; g < 3; ++g)
+      for (int sgn : {-1, 1}) {
+        const long double t = 0.5L + 0.5L * sgn * nodes[g];
+        const long double x = p.x + t * (q.x - p.x);
+        want += 0.5L * weights[g] * std::pow(x, 10) / 10 * (q.y - p.y);
+      }
+  }
+  EXPECT_NEAR(form(b, one_s, one_f), static_cast<double>(want), 1e-14);
+}
