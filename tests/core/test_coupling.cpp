@@ -220,8 +220,8 @@ class PowerNine : public Basis {
 // which Green's theorem gives independently as the boundary integral of x^10/10 dy, exact for the
 // polygon X(solid) (the solid is a rotated rectangle).
 TEST(Coupling, UnfittedBasisIntegratesExactly) {
-  Mesh fluid = test::grid_mesh(11, 9, 0, 0, 1.1, 0.9, true);
-  Mesh solid = test::grid_mesh(5, 4, 0.35, 0.3, 0.4, 0.3);
+  Mesh fluid = test::grid_mesh(3, 2, 0, 0, 1.1, 0.9, true);  // large pieces: a rule of too low a degree shows
+  Mesh solid = test::grid_mesh(2, 2, 0.35, 0.3, 0.4, 0.3);
   const double angle = 0.4;
   Rotation r{std::cos(angle), std::sin(angle), 0.25, -0.2};
   test::AffineMap map(solid, r.c, -r.s, r.s, r.c, r.bx, r.by);
@@ -249,5 +249,5 @@ TEST(Coupling, UnfittedBasisIntegratesExactly) {
         want += 0.5L * weights[g] * std::pow(x, 10) / 10 * (q.y - p.y);
       }
   }
-  EXPECT_NEAR(form(b, one_s, one_f), static_cast<double>(want), 1e-14);
+  EXPECT_NEAR(form(b, one_s, one_f), static_cast<double>(want), 1e-14 * std::fabs(static_cast<double>(want)));
 }
