@@ -20,28 +20,28 @@ Point lattice_point(int d, int m);
 // coefficients of a polynomial of degree d are inverse * (its values at the lattice points).
 const std::vector<double>& vandermonde_inverse(int d);
 
-// Values of all monomials of degree <= d at xi.
-inline void monomial_values(int d, Point xi, double* value) {
-  double p1[kMaxLatticeDegree + 1], p2[kMaxLatticeDegree + 1];
+// The powers xi1^i and xi2^i, i = 0..d.
+inline void powers(int d, Point xi, double* p1, double* p2) {
   p1[0] = p2[0] = 1;
   for (int i = 1; i <= d; ++i) {
     p1[i] = p1[i - 1] * xi.x;
     p2[i] = p2[i - 1] * xi.y;
   }
+}
+
+// Values of all monomials of degree <= d at xi (inline, as the next: with a constant d the loops unroll).
+inline void monomial_values(int d, Point xi, double* value) {
+  double p1[kMaxLatticeDegree + 1], p2[kMaxLatticeDegree + 1];
+  powers(d, xi, p1, p2);
   int m = 0;
   for (int t = 0; t <= d; ++t)
     for (int b = 0; b <= t; ++b, ++m) value[m] = p1[t - b] * p2[b];
 }
 
-// Values of all monomials of degree <= d at xi, and their derivatives in xi1 and xi2 (inline: with a
-// constant d the loops unroll).
+// Values of all monomials of degree <= d at xi, and their derivatives in xi1 and xi2.
 inline void monomials(int d, Point xi, double* value, double* d1, double* d2) {
   double p1[kMaxLatticeDegree + 1], p2[kMaxLatticeDegree + 1];
-  p1[0] = p2[0] = 1;
-  for (int i = 1; i <= d; ++i) {
-    p1[i] = p1[i - 1] * xi.x;
-    p2[i] = p2[i - 1] * xi.y;
-  }
+  powers(d, xi, p1, p2);
   int m = 0;
   for (int t = 0; t <= d; ++t)
     for (int b = 0; b <= t; ++b, ++m) {
