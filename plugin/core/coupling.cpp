@@ -487,6 +487,12 @@ FluidSide::FluidSide(Mesh mesh, const Basis& space, const std::vector<int>& comp
   for (int k = 0; k < mesh_.size(); ++k) space.dofs(k, &dofs_[static_cast<size_t>(k) * space.local_dofs()]);
 }
 
+SolidSide::SolidSide(Mesh mesh, const Basis& multiplier, const std::vector<int>& components)
+    : mesh_(std::move(mesh)), space_(multiplier), components_(components),
+      degree_((check_components(multiplier, components, "solid", "multiplier space"),
+               polynomial_degree(multiplier, components))),
+      basis_(multiplier, mesh_, degree_, components) {}
+
 CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const Mesh& solid, const Basis& multiplier,
                             const SolidMap& map, const CouplingOptions& opt, CouplingReport* report) {
   check_options(fluid_space, multiplier, opt);
@@ -496,17 +502,34 @@ CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const M
 
 CsrMatrix assemble_coupling(const FluidSide& side, const Mesh& solid, const Basis& multiplier, const SolidMap& map,
                             const CouplingOptions& opt, CouplingReport* report) {
+  check_options(side.space(), multiplier, opt);
+  const auto start = std::chrono::steady_clock::now();
+  const SolidSide solid_side(solid, multiplier, opt.solid_components);
+  const double prepare = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  CsrMatrix m = assemble_coupling(side, solid_side, map, opt, report);
+  if (report) {  // the solid side's fit belongs to this call's setup
+    report->setup_seconds += prepare;
+    report->seconds += prepare;
+  }
+  return m;
+}
+
+CsrMatrix assemble_coupling(const FluidSide& side, const SolidSide& solid_side, const SolidMap& map,
+                            const CouplingOptions& opt, CouplingReport* report) {
   const auto start = std::chrono::steady_clock::now();
   const Basis& fluid_space = side.space();
+  const Basis& multiplier = solid_side.space();
+  const Mesh& solid = solid_side.mesh();
   check_options(fluid_space, multiplier, opt);
   if (opt.fluid_components != side.components()) throw Error("the fluid side was prepared for other components");
+  if (opt.solid_components != solid_side.components()) throw Error("the solid side was prepared for other components");
   if (opt.parts < 1 || opt.part < 0 || opt.part >= opt.parts) throw Error("part must lie in [0, parts)");
   const int first = static_cast<int>(static_cast<long long>(solid.size()) * opt.part / opt.parts);
   const int last = static_cast<int>(static_cast<long long>(solid.size()) * (opt.part + 1) / opt.parts);
 
   CouplingReport total;
   total.fluid_degree = side.degree();
-  total.solid_degree = polynomial_degree(multiplier, opt.solid_components);
+  total.solid_degree = solid_side.degree();
   // Exact for the product of the two bases (affine maps); 10 when an element is not polynomial.
   const int product = (total.fluid_degree < 0 || total.solid_degree < 0)
                           ? 10
@@ -515,7 +538,7 @@ CsrMatrix assemble_coupling(const FluidSide& side, const Mesh& solid, const Basi
   if (opt.method == CouplingOptions::Method::Quadrature && opt.qforder >= 0) total.rule_degree = opt.qforder;
 
   const PolynomialBasis& fluid_poly = side.basis();
-  const PolynomialBasis solid_poly(multiplier, solid, total.solid_degree, opt.solid_components);
+  const PolynomialBasis& solid_poly = solid_side.basis();
   // Threads only where no evaluation goes back to the caller's Basis or map (they need not be thread-safe).
   const bool parallel = fluid_poly.fitted() && solid_poly.fitted() && map.degree() >= 1;
   const int threads = parallel ? std::max(1, std::min(opt.threads, 64)) : 1;

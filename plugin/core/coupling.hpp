@@ -68,6 +68,28 @@ class FluidSide {
   std::vector<int> dofs_;
 };
 
+// The solid side: the solid mesh (reference configuration) and the multiplier basis fitted on the coupled
+// components. Built once and reused for every map while the solid mesh and the multiplier space stay the
+// same (a time loop: only the map moves).
+class SolidSide {
+ public:
+  SolidSide(Mesh mesh, const Basis& multiplier, const std::vector<int>& components);
+  SolidSide(const SolidSide&) = delete;
+  SolidSide& operator=(const SolidSide&) = delete;
+  const Mesh& mesh() const { return mesh_; }
+  const Basis& space() const { return space_; }
+  const std::vector<int>& components() const { return components_; }
+  int degree() const { return degree_; }
+  const PolynomialBasis& basis() const { return basis_; }
+
+ private:
+  Mesh mesh_;
+  const Basis& space_;
+  std::vector<int> components_;
+  int degree_;
+  PolynomialBasis basis_;
+};
+
 // B_ij = int_{solid} c1 grad_s psi_i : grad_s (phi_j o X) + c2 psi_i . (phi_j o X) ds,
 // psi_i the multiplier basis (rows: multiplier dofs), phi_j the fluid basis (columns: fluid dofs),
 // summed over the paired components.
@@ -84,11 +106,15 @@ class FluidSide {
 // sub-triangle's corners do not share one fluid triangle, down to tol of its area; the true map at every point.
 // Errors (Error): bad options or components, non-finite/inverted/flat map, a mapped solid outside the
 // fluid mesh by more than outside_tol (unless drop_outside).
-// options.fluid_components must be the fluid side's components.
+// options.fluid_components and options.solid_components must be the sides' components.
+CsrMatrix assemble_coupling(const FluidSide& fluid, const SolidSide& solid, const SolidMap& map,
+                            const CouplingOptions& options, CouplingReport* report = nullptr);
+
+// The same, preparing the solid side for this one call.
 CsrMatrix assemble_coupling(const FluidSide& fluid, const Mesh& solid, const Basis& multiplier, const SolidMap& map,
                             const CouplingOptions& options, CouplingReport* report = nullptr);
 
-// The same, preparing the fluid side for this one call.
+// The same, preparing both sides for this one call.
 CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const Mesh& solid, const Basis& multiplier,
                             const SolidMap& map, const CouplingOptions& options, CouplingReport* report = nullptr);
 

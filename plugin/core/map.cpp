@@ -13,32 +13,39 @@
 
 namespace dlmfsi {
 
+int FieldMap::fit_degree(const Basis& space_x, int comp_x, const Basis& space_y, int comp_y) {
+  int degree = 0;
+  for (const auto& [space, comp] : {std::pair<const Basis*, int>{&space_x, comp_x}, {&space_y, comp_y}}) {
+    if (comp < 0 || comp >= space->components()) throw Error("map component out of range");
+    const int d = polynomial_degree(*space, {comp});
+    if (d < 0) return -1;
+    degree = std::max(degree, d);
+  }
+  return degree < 1 || degree > MappedTriangle::kMaxDegree ? -1 : degree;
+}
+
 FieldMap::FieldMap(const Mesh& solid, const Basis& space_x, const double* coef_x, int comp_x, const Basis& space_y,
-                   const double* coef_y, int comp_y) {
+                   const double* coef_y, int comp_y, const PolynomialBasis* fit_x, const PolynomialBasis* fit_y) {
   part_[0] = {&space_x, coef_x, comp_x, 0, 0};
   part_[1] = {&space_y, coef_y, comp_y, 0, 0};
-  bool known = true;
-  degree_ = 0;
-  for (auto& p : part_) {
-    if (p.comp < 0 || p.comp >= p.space->components()) throw Error("map component out of range");
-    p.space->component_dofs(p.comp, p.first, p.last);
-    const int d = polynomial_degree(*p.space, {p.comp});
-    if (d < 0) known = false;
-    degree_ = std::max(degree_, d);
-  }
-  if (!known || degree_ < 1 || degree_ > MappedTriangle::kMaxDegree) {
-    degree_ = -1;  // not polynomial (or constant): evaluate the map itself
-    return;
-  }
+  degree_ = fit_degree(space_x, comp_x, space_y, comp_y);
+  for (auto& p : part_) p.space->component_dofs(p.comp, p.first, p.last);
+  if (degree_ < 0) return;  // not polynomial (or constant): evaluate the map itself
   // X on triangle k = sum over the component's dofs of (dof value) * (basis polynomial).
   const int nm = monomial_count(degree_);
   monomial_coef_.assign(static_cast<size_t>(solid.size()) * 2 * nm, 0.0);
-  std::unique_ptr<PolynomialBasis> fit;
+  std::unique_ptr<PolynomialBasis> own;
+  const PolynomialBasis* fit = nullptr;
   for (int a = 0; a < 2; ++a) {
     const Part& p = part_[a];
-    // X and Y are often the same space and component (two functions of one scalar space): one fit.
-    if (a == 0 || p.space != part_[0].space || p.comp != part_[0].comp)
-      fit = std::make_unique<PolynomialBasis>(*p.space, solid, degree_, std::vector<int>{p.comp});
+    const PolynomialBasis* given = a == 0 ? fit_x : fit_y;
+    if (given && given->degree() == degree_) {
+      fit = given;
+    } else if (a == 0 || p.space != part_[0].space || p.comp != part_[0].comp) {
+      // X and Y are often the same space and component (two functions of one scalar space): one fit.
+      own = std::make_unique<PolynomialBasis>(*p.space, solid, degree_, std::vector<int>{p.comp});
+      fit = own.get();
+    }
     const PolynomialBasis& poly = *fit;
     if (!poly.fitted()) {
       degree_ = -1;

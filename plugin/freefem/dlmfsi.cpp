@@ -95,6 +95,56 @@ FluidCache& fluid_cache() {
   return *cache;
 }
 
+// The solid side (solid mesh, multiplier fit) and the fits of the map's spaces of the last calls, reused
+// while the multiplier space and its coupled components stay the same: in a time loop only the map's
+// values change. The map's fits live on the solid side's mesh, so they go when it goes.
+struct SolidCache {
+  struct MapFit {
+    const FESpace* space;
+    UniqueffId id;
+    int comp, degree;
+    std::unique_ptr<SpaceBasis> basis;
+    std::unique_ptr<dlmfsi::PolynomialBasis> fit;
+  };
+  const FESpace* space = nullptr;
+  UniqueffId id;
+  std::vector<int> components;
+  std::unique_ptr<SpaceBasis> basis;
+  std::unique_ptr<dlmfsi::SolidSide> side;
+  std::vector<MapFit> fits;
+
+  const dlmfsi::SolidSide& get(const FESpace& vs, const std::vector<int>& comps) {
+    if (side && space == &vs && id == vs && components == comps) return *side;
+    fits.clear();
+    side.reset();
+    basis.reset(new SpaceBasis(vs));
+    side.reset(new dlmfsi::SolidSide(dlmfsi_ff::convert(vs.Th), *basis, comps));
+    space = &vs;
+    id = vs;
+    components = comps;
+    return *side;
+  }
+
+  // The fit of component comp of the map's space vm (on the solid side's mesh) at the given degree: the
+  // solid side's own fit when it is the same one.
+  const dlmfsi::PolynomialBasis* map_fit(const FESpace& vm, int comp, int degree) {
+    if (&vm == space && id == vm && side->components() == std::vector<int>{comp} && side->degree() == degree)
+      return &side->basis();
+    for (const MapFit& f : fits)
+      if (f.space == &vm && f.id == vm && f.comp == comp && f.degree == degree) return f.fit.get();
+    if (fits.size() >= 4) fits.clear();  // at most the two components of two maps
+    MapFit f{&vm, vm, comp, degree, std::make_unique<SpaceBasis>(vm), nullptr};
+    f.fit = std::make_unique<dlmfsi::PolynomialBasis>(*f.basis, side->mesh(), degree, std::vector<int>{comp});
+    fits.push_back(std::move(f));
+    return fits.back().fit.get();
+  }
+};
+
+SolidCache& solid_cache() {
+  static SolidCache* cache = new SolidCache;  // never destroyed, as the fluid cache
+  return *cache;
+}
+
 class DlmfsiOp : public E_F0mps {
  public:
   typedef newpMatrice_Creuse<double> Result;
@@ -220,13 +270,16 @@ AnyType DlmfsiOp::operator()(Stack stack) const {
     const KN<double>& cy = *py.first->x();
 
     const dlmfsi::FluidSide& fluid = fluid_cache().get(*vf, opt.fluid_components);
-    const dlmfsi::Mesh solid = dlmfsi_ff::convert(vs->Th);
-    const SpaceBasis multiplier(*vs), map_x_basis(sx), map_y_basis(sy);
-    // X and Y in one space: one basis object, so that the map fits that space once
-    const SpaceBasis& map_y_space = &sx == &sy ? map_x_basis : map_y_basis;
-    const dlmfsi::FieldMap map(solid, map_x_basis, &cx[0], px.second, map_y_space, &cy[0], py.second);
+    SolidCache& cache = solid_cache();
+    const dlmfsi::SolidSide& solid = cache.get(*vs, opt.solid_components);
+    const SpaceBasis map_x_basis(sx), map_y_basis(sy);
+    const int degree = dlmfsi::FieldMap::fit_degree(map_x_basis, px.second, map_y_basis, py.second);
+    const dlmfsi::PolynomialBasis* fit_x = degree > 0 ? cache.map_fit(sx, px.second, degree) : nullptr;
+    const dlmfsi::PolynomialBasis* fit_y = degree > 0 ? cache.map_fit(sy, py.second, degree) : nullptr;
+    const dlmfsi::FieldMap map(solid.mesh(), map_x_basis, &cx[0], px.second, map_y_basis, &cy[0], py.second, fit_x,
+                               fit_y);
     dlmfsi::CouplingReport report;
-    dlmfsi::CsrMatrix b = dlmfsi::assemble_coupling(fluid, solid, multiplier, map, opt, &report);
+    dlmfsi::CsrMatrix b = dlmfsi::assemble_coupling(fluid, solid, map, opt, &report);
     if (verbosity > 1) cout << report.summary() << endl;
     if (opt.drop_outside && report.outside_area > 0 && verbosity > 0)
       cout << "dlmfsi: dropped area outside the fluid mesh " << report.outside_area << " (solid triangle "
