@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <mutex>
@@ -94,8 +95,8 @@ class Worker {
     fcol_.resize(nf_);
   }
 
-  void run(int first, int last) {
-    for (int k = first; k < last; ++k) solid_triangle(k);
+  void run(const int* first, const int* last) {
+    for (const int* k = first; k != last; ++k) solid_triangle(*k);
   }
 
   std::vector<Triplet> triplets;
@@ -487,11 +488,59 @@ FluidSide::FluidSide(Mesh mesh, const Basis& space, const std::vector<int>& comp
   for (int k = 0; k < mesh_.size(); ++k) space.dofs(k, &dofs_[static_cast<size_t>(k) * space.local_dofs()]);
 }
 
+namespace {
+
+// The triangles of a mesh sorted by the Morton code of their centroids (16 bits per coordinate of the
+// bounding box, interleaved).
+std::vector<int> morton_order(const Mesh& mesh) {
+  Point lo{1e300, 1e300}, hi{-1e300, -1e300};
+  for (const Point& p : mesh.vertices) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  }
+  const double sx = hi.x > lo.x ? 65535 / (hi.x - lo.x) : 0, sy = hi.y > lo.y ? 65535 / (hi.y - lo.y) : 0;
+  auto spread = [](uint32_t v) {  // bit i to bit 2i
+    v = (v | (v << 8)) & 0x00FF00FFu;
+    v = (v | (v << 4)) & 0x0F0F0F0Fu;
+    v = (v | (v << 2)) & 0x33333333u;
+    return (v | (v << 1)) & 0x55555555u;
+  };
+  std::vector<std::pair<uint32_t, int>> keyed(mesh.size());
+  for (int k = 0; k < mesh.size(); ++k) {
+    Point c[3];
+    mesh.corners(k, c);
+    const double x = (c[0].x + c[1].x + c[2].x) / 3, y = (c[0].y + c[1].y + c[2].y) / 3;
+    const auto ix = static_cast<uint32_t>(std::min(65535.0, std::max(0.0, (x - lo.x) * sx)));
+    const auto iy = static_cast<uint32_t>(std::min(65535.0, std::max(0.0, (y - lo.y) * sy)));
+    keyed[k] = {spread(ix) | (spread(iy) << 1), k};
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<int> order(mesh.size());
+  for (int k = 0; k < mesh.size(); ++k) order[k] = keyed[k].second;
+  return order;
+}
+
+}  // namespace
+
 SolidSide::SolidSide(Mesh mesh, const Basis& multiplier, const std::vector<int>& components)
     : mesh_(std::move(mesh)), space_(multiplier), components_(components),
       degree_((check_components(multiplier, components, "solid", "multiplier space"),
                polynomial_degree(multiplier, components))),
-      basis_(multiplier, mesh_, degree_, components) {}
+      basis_(multiplier, mesh_, degree_, components), order_(morton_order(mesh_)) {}
+
+namespace {
+
+// The solid triangles of share [first, last) of the indices, in the solid side's order.
+std::vector<int> share_in_order(const SolidSide& solid, int first, int last) {
+  if (first == 0 && last == solid.mesh().size()) return solid.order();
+  std::vector<int> out;
+  out.reserve(last - first);
+  for (int k : solid.order())
+    if (k >= first && k < last) out.push_back(k);
+  return out;
+}
+
+}  // namespace
 
 CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const Mesh& solid, const Basis& multiplier,
                             const SolidMap& map, const CouplingOptions& opt, CouplingReport* report) {
@@ -548,10 +597,13 @@ CsrMatrix assemble_coupling(const FluidSide& side, const SolidSide& solid_side, 
     workers.emplace_back(side, solid, multiplier, solid_poly, map, opt, total);
   auto since = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   total.setup_seconds = since();
-  // Contiguous shares in solid order, so that the sums come out in the same order for any thread count.
-  auto share = [&](int t) { return first + static_cast<int>((static_cast<long long>(last - first) * t) / threads); };
+  // Contiguous shares of the ordered triangles, so that the sums come out in the same order for any thread
+  // count.
+  const std::vector<int> triangles = share_in_order(solid_side, first, last);
+  const int count = static_cast<int>(triangles.size());
+  auto share = [&](int t) { return triangles.data() + static_cast<long long>(count) * t / threads; };
   if (threads == 1) {
-    workers[0].run(first, last);
+    workers[0].run(triangles.data(), triangles.data() + count);
   } else {
     std::vector<std::thread> pool;
     std::vector<std::exception_ptr> errors(threads);

@@ -81,6 +81,10 @@ class SolidSide {
   const std::vector<int>& components() const { return components_; }
   int degree() const { return degree_; }
   const PolynomialBasis& basis() const { return basis_; }
+  // The solid triangles along a space-filling (Morton) curve through their centroids: consecutive
+  // triangles lie close together, so the search walks little from one to the next and the fluid data it
+  // touches stays in cache, whatever order the mesh generator left them in.
+  const std::vector<int>& order() const { return order_; }
 
  private:
   Mesh mesh_;
@@ -88,6 +92,7 @@ class SolidSide {
   std::vector<int> components_;
   int degree_;
   PolynomialBasis basis_;
+  std::vector<int> order_;
 };
 
 // B_ij = int_{solid} c1 grad_s psi_i : grad_s (phi_j o X) + c2 psi_i . (phi_j o X) ds,
