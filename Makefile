@@ -21,11 +21,13 @@ build: deps
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
-# The main job: coupling accuracy and time, built-in quadrature vs dlmfsi, then the paper scenes.
+# The main job: coupling accuracy and time, built-in quadrature vs dlmfsi, then the paper scenes, then the
+# summary of the last `make evidence` run (if any).
 compare: build
 	@mkdir -p $(OUT)
 	DLMFSI_BUILD=$(abspath $(BUILD)) $(FF) edp/compare_coupling.edp -out $(OUT)
 	@if [ -f scripts/compare-scenes ]; then DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(OUT) scripts/compare-scenes; fi
+	@OUT=$(abspath $(OUT)) scripts/evidence-summary
 
 # Assembly speed over a sweep of sizes (built-in vs dlmfsi, threads, cost per piece, peak memory):
 # CSV + PNG under $(OUT)/bench. QUICK=1 for tiny sizes.
