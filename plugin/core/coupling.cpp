@@ -96,6 +96,8 @@ class Worker {
   }
 
   void run(const int* first, const int* last) {
+    // about two fluid triangles' columns per solid triangle: room for most runs without regrowing
+    triplets.reserve(static_cast<size_t>(last - first) * solid_used_.size() * 2 * fluid_used_.size());
     for (const int* k = first; k != last; ++k) solid_triangle(*k);
   }
 
