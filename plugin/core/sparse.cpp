@@ -36,6 +36,7 @@ CsrMatrix compress(int rows, int cols, const std::vector<std::vector<Triplet>>& 
   m.column.reserve(bucket_col.size());
   m.value.reserve(bucket_col.size());
   std::vector<int> position(cols, -1);  // where column c sits in m.column, if in the current row
+  std::vector<std::pair<int, double>> row;
   for (int i = 0; i < rows; ++i) {
     const int begin = static_cast<int>(m.column.size());
     for (int e = offset[i]; e < offset[i + 1]; ++e) {
@@ -48,17 +49,29 @@ CsrMatrix compress(int rows, int cols, const std::vector<std::vector<Triplet>>& 
         m.value.push_back(bucket_value[e]);
       }
     }
-    // insertion sort of the row by column (a row holds a handful of entries)
-    for (int k = begin + 1; k < static_cast<int>(m.column.size()); ++k) {
-      const int c = m.column[k];
-      const double v = m.value[k];
-      int j = k;
-      for (; j > begin && m.column[j - 1] > c; --j) {
-        m.column[j] = m.column[j - 1];
-        m.value[j] = m.value[j - 1];
+    // the row by column: insertion sort for the usual handful of entries, std::sort for long rows (a
+    // solid much coarser than the fluid)
+    const int end = static_cast<int>(m.column.size());
+    if (end - begin > 32) {
+      row.clear();
+      for (int k = begin; k < end; ++k) row.emplace_back(m.column[k], m.value[k]);
+      std::sort(row.begin(), row.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+      for (int k = begin; k < end; ++k) {
+        m.column[k] = row[k - begin].first;
+        m.value[k] = row[k - begin].second;
       }
-      m.column[j] = c;
-      m.value[j] = v;
+    } else {
+      for (int k = begin + 1; k < end; ++k) {
+        const int c = m.column[k];
+        const double v = m.value[k];
+        int j = k;
+        for (; j > begin && m.column[j - 1] > c; --j) {
+          m.column[j] = m.column[j - 1];
+          m.value[j] = m.value[j - 1];
+        }
+        m.column[j] = c;
+        m.value[j] = v;
+      }
     }
     m.start[i + 1] = static_cast<int>(m.column.size());
   }
