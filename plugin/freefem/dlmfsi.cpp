@@ -7,6 +7,7 @@
 // a FreeFEM ExecError that a script can catch.
 #include "ff++.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <memory>
@@ -125,14 +126,23 @@ struct SolidCache {
     return *side;
   }
 
+  // Once per call, before map_fit: keeps the fits of the last call's map (the two most recently used), so
+  // that the cache stays small and no fit handed out during a call is dropped before the call ends.
+  void trim_fits() {
+    if (fits.size() > 2) fits.erase(fits.begin(), fits.end() - 2);
+  }
+
   // The fit of component comp of the map's space vm (on the solid side's mesh) at the given degree: the
-  // solid side's own fit when it is the same one.
+  // solid side's own fit when it is the same one. The most recently used fit is kept last (moving the
+  // entries leaves the fits themselves where they are).
   const dlmfsi::PolynomialBasis* map_fit(const FESpace& vm, int comp, int degree) {
     if (&vm == space && id == vm && side->components() == std::vector<int>{comp} && side->degree() == degree)
       return &side->basis();
-    for (const MapFit& f : fits)
-      if (f.space == &vm && f.id == vm && f.comp == comp && f.degree == degree) return f.fit.get();
-    if (fits.size() >= 4) fits.clear();  // at most the two components of two maps
+    for (auto it = fits.begin(); it != fits.end(); ++it)
+      if (it->space == &vm && it->id == vm && it->comp == comp && it->degree == degree) {
+        std::rotate(it, it + 1, fits.end());
+        return fits.back().fit.get();
+      }
     MapFit f{&vm, vm, comp, degree, std::make_unique<SpaceBasis>(vm), nullptr};
     f.fit = std::make_unique<dlmfsi::PolynomialBasis>(*f.basis, side->mesh(), degree, std::vector<int>{comp});
     fits.push_back(std::move(f));
@@ -272,6 +282,7 @@ AnyType DlmfsiOp::operator()(Stack stack) const {
     const dlmfsi::FluidSide& fluid = fluid_cache().get(*vf, opt.fluid_components);
     SolidCache& cache = solid_cache();
     const dlmfsi::SolidSide& solid = cache.get(*vs, opt.solid_components);
+    cache.trim_fits();
     const SpaceBasis map_x_basis(sx), map_y_basis(sy);
     const int degree = dlmfsi::FieldMap::fit_degree(map_x_basis, px.second, map_y_basis, py.second);
     const dlmfsi::PolynomialBasis* fit_x = degree > 0 ? cache.map_fit(sx, px.second, degree) : nullptr;
