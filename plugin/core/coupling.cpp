@@ -86,6 +86,8 @@ class Worker {
     if (batch_) {
       fwidth_ = static_cast<int>(fluid_poly_.functions().size());
       swidth_ = static_cast<int>(solid_poly_.functions().size());
+      linear_ = fluid_poly_.degree() <= 1 && solid_poly_.degree() <= 1 && fwidth_ <= kLinearWidth &&
+                swidth_ <= kLinearWidth;
       for (size_t p = 0; p < np; ++p) {
         pair_fluid_.push_back(index_in(fluid_poly_.functions(), opt.fluid_components[p], ncf_, frange_[p]));
         pair_solid_.push_back(index_in(solid_poly_.functions(), opt.solid_components[p], ncs_, srange_[p]));
@@ -197,6 +199,10 @@ class Worker {
   }
 
   void integrate_piece(const MappedTriangle& mt, int kf, const Piece& piece, int degree) {
+    if (linear_ && mt.affine) {
+      integrate_piece_linear(mt, kf, piece);
+      return;
+    }
     if (batch_) {
       integrate_piece_batch(mt, kf, piece, degree);
       return;
@@ -303,6 +309,78 @@ class Worker {
             const double *px = psi + sn, *py = psi + 2 * sn, *gx = phi + fn, *gy = phi + 2 * fn;
             for (size_t k = 0; k < n; ++k) sum += px[k] * gx[k] + py[k] * gy[k];
           }
+          col[b] += sum;
+        }
+      }
+    }
+  }
+
+  // Both bases of degree <= 1 and X affine on the triangle: every term of the integrand is a product of two
+  // affine functions f g (or a constant), integrated exactly from the values at the piece's corners. On each
+  // fan triangle T = (v0, vt, vt+1),
+  //   int_T f g = |T| / 12 [sum_{i in T} f_i g_i + (sum_{i in T} f_i)(sum_{i in T} g_i)],
+  // so over the fan: sum_v omega_v f_v g_v + sum_t W_t F_t G_t with W_t = |T_t| / 12, omega_v the sum of W_t
+  // over the fan triangles at v, and F_t, G_t the corner sums. The gradient term is constant on the piece:
+  // c1 |piece| grad psi_i . (grad phi_j dX/ds). (Areas in the fluid over det dX/ds: integrals over the solid.)
+  void integrate_piece_linear(const MappedTriangle& mt, int kf, const Piece& piece) {
+    ++report_.pieces;
+    fluid_columns(kf);
+    const int nv = piece.n, nt = nv - 2;
+    Point eta[Piece::kMaxVertices], xi[Piece::kMaxVertices];
+    for (int v = 0; v < nv; ++v) {
+      eta[v] = fluid_poly_.to_reference(kf, piece.v[v]);
+      xi[v] = mt.affine_reference(piece.v[v]);
+    }
+    double omega[Piece::kMaxVertices] = {}, w[Piece::kMaxVertices];
+    double piece_area = 0;
+    for (int t = 1; t <= nt; ++t) {
+      const double a = 0.5 * area2(piece.v[0], piece.v[t], piece.v[t + 1]) / mt.affine_det;
+      piece_area += a;
+      w[t - 1] = a / 12;
+      omega[0] += w[t - 1];
+      omega[t] += w[t - 1];
+      omega[t + 1] += w[t - 1];
+    }
+    report_.points += nv;
+    // values at the corners, function-major (value[f * nv + v]), and the constant gradients
+    double fv[kLinearWidth * Piece::kMaxVertices], sv[kLinearWidth * Piece::kMaxVertices];
+    double fgx[kLinearWidth], fgy[kLinearWidth], sgx[kLinearWidth], sgy[kLinearWidth];
+    fluid_poly_.evaluate_points(kf, eta, nv, fv, nullptr, nullptr);
+    solid_poly_.evaluate_points(mt.k, xi, nv, sv, nullptr, nullptr);
+    if (gradients_) {
+      double unused[kLinearWidth];
+      fluid_poly_.evaluate_points(kf, eta, 1, unused, fgx, fgy);
+      solid_poly_.evaluate_points(mt.k, xi, 1, unused, sgx, sgy);
+      const double(&j)[2][2] = mt.affine_value.jac;
+      for (int f = 0; f < fwidth_; ++f) {  // chain rule: grad_s (phi o X)_b = sum_a d_a phi dX_a/ds_b
+        const double g0 = fgx[f] * j[0][0] + fgy[f] * j[1][0], g1 = fgx[f] * j[0][1] + fgy[f] * j[1][1];
+        fgx[f] = opt_.c1 * piece_area * g0;
+        fgy[f] = opt_.c1 * piece_area * g1;
+      }
+    }
+    // corner sums per fan triangle, the fluid's scaled by W_t c2
+    double fsum[kLinearWidth * (Piece::kMaxVertices - 2)], ssum[kLinearWidth * (Piece::kMaxVertices - 2)];
+    const double c2 = opt_.c2;
+    for (int f = 0; f < fwidth_; ++f) {
+      double* v = fv + f * nv;
+      for (int t = 0; t < nt; ++t) fsum[f * nt + t] = c2 * w[t] * (v[0] + v[t + 1] + v[t + 2]);
+      for (int k = 0; k < nv; ++k) v[k] *= c2 * omega[k];
+    }
+    for (int f = 0; f < swidth_; ++f) {
+      const double* v = sv + f * nv;
+      for (int t = 0; t < nt; ++t) ssum[f * nt + t] = v[0] + v[t + 1] + v[t + 2];
+    }
+    for (size_t p = 0; p < pair_fluid_.size(); ++p) {
+      const std::vector<int>&fi = pair_fluid_[p], &si = pair_solid_[p];
+      for (size_t a = 0; a < fi.size(); ++a) {
+        const int fa = fi[a];
+        double* col = &block_[static_cast<size_t>(fcol_[frange_[p].first + static_cast<int>(a)]) * ns_ + srange_[p].first];
+        for (size_t b = 0; b < si.size(); ++b) {
+          const int sb = si[b];
+          double sum = 0;
+          for (int k = 0; k < nv; ++k) sum += fv[fa * nv + k] * sv[sb * nv + k];
+          for (int t = 0; t < nt; ++t) sum += fsum[fa * nt + t] * ssum[sb * nt + t];
+          if (gradients_) sum += fgx[fa] * sgx[sb] + fgy[fa] * sgy[sb];
           col[b] += sum;
         }
       }
@@ -440,6 +518,9 @@ class Worker {
   std::vector<int> sdofs_, fcol_, columns_;
   // batch path
   bool batch_ = false, gradients_ = false;
+  // linear path (both bases of degree <= 1, affine triangles): at most this many fitted functions per side
+  static constexpr int kLinearWidth = 48;
+  bool linear_ = false;
   const std::vector<RulePoint>* affine_rule_ = nullptr;  // exact for the product of the bases
   int fwidth_ = 0, swidth_ = 0;
   std::vector<std::vector<int>> pair_fluid_, pair_solid_;  // per pair: fitted-function index of each local dof
