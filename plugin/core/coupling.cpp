@@ -112,7 +112,6 @@ class Worker {
     mt.prepare(solid_, map_, ks);
     multiplier_.dofs(ks, sdofs_.data());
     columns_.clear();
-    block_.clear();
     ++report_.solid_triangles;
     (mt.affine ? report_.affine : (mt.straight ? report_.straight : report_.curved))++;
     const double image_area = 0.5 * area2(mt.image[0], mt.image[1], mt.image[2]);
@@ -315,72 +314,66 @@ class Worker {
     }
   }
 
-  // Both bases of degree <= 1 and X affine on the triangle: every term of the integrand is a product of two
-  // affine functions f g (or a constant), integrated exactly from the values at the piece's corners. On each
-  // fan triangle T = (v0, vt, vt+1),
-  //   int_T f g = |T| / 12 [sum_{i in T} f_i g_i + (sum_{i in T} f_i)(sum_{i in T} g_i)],
-  // so over the fan: sum_v omega_v f_v g_v + sum_t W_t F_t G_t with W_t = |T_t| / 12, omega_v the sum of W_t
-  // over the fan triangles at v, and F_t, G_t the corner sums. The gradient term is constant on the piece:
-  // c1 |piece| grad psi_i . (grad phi_j dX/ds). (Areas in the fluid over det dX/ds: integrals over the solid.)
+  // Both bases of degree <= 1 and X affine on the triangle: on the piece P (area A, centroid c, central second
+  // moments M = int_P (y - c)(y - c)^T dy) every product of two affine functions f g integrates exactly as
+  //   int_P f g dy = A f(c) g(c) + grad f . M grad g,
+  // and a product of gradients is constant. With y = X(s), ds = dy / det dX/ds and psi's gradient in y,
+  // (dX/ds)^-T grad_s psi, the block gets
+  //   (c2 / det) [A phi_j(c) psi_i(c) + grad phi_j . M grad_y psi_i] + c1 (A / det) grad_s psi_i . (grad phi_j dX/ds).
   void integrate_piece_linear(const MappedTriangle& mt, int kf, const Piece& piece) {
     ++report_.pieces;
     fluid_columns(kf);
-    const int nv = piece.n, nt = nv - 2;
-    Point eta[Piece::kMaxVertices], xi[Piece::kMaxVertices];
-    for (int v = 0; v < nv; ++v) {
-      eta[v] = fluid_poly_.to_reference(kf, piece.v[v]);
-      xi[v] = mt.affine_reference(piece.v[v]);
+    // area, centroid and second moments from the fan, in coordinates relative to the first corner
+    const Point o = piece.v[0];
+    double area = 0, cx = 0, cy = 0, mxx = 0, mxy = 0, myy = 0;
+    for (int t = 1; t + 1 < piece.n; ++t) {
+      const Point p = piece.v[t] - o, q = piece.v[t + 1] - o;
+      const double a = 0.5 * cross(p, q);  // the triangle (0, p, q): int x x^T = a/6 (p p^T + q q^T + (p q^T + q p^T)/2)
+      area += a;
+      cx += a * (p.x + q.x) / 3;
+      cy += a * (p.y + q.y) / 3;
+      mxx += a / 6 * (p.x * p.x + q.x * q.x + p.x * q.x);
+      myy += a / 6 * (p.y * p.y + q.y * q.y + p.y * q.y);
+      mxy += a / 12 * (2 * p.x * p.y + 2 * q.x * q.y + p.x * q.y + q.x * p.y);
     }
-    double omega[Piece::kMaxVertices] = {}, w[Piece::kMaxVertices];
-    double piece_area = 0;
-    for (int t = 1; t <= nt; ++t) {
-      const double a = 0.5 * area2(piece.v[0], piece.v[t], piece.v[t + 1]) / mt.affine_det;
-      piece_area += a;
-      w[t - 1] = a / 12;
-      omega[0] += w[t - 1];
-      omega[t] += w[t - 1];
-      omega[t + 1] += w[t - 1];
-    }
-    report_.points += nv;
-    // values at the corners, function-major (value[f * nv + v]), and the constant gradients
-    double fv[kLinearWidth * Piece::kMaxVertices], sv[kLinearWidth * Piece::kMaxVertices];
-    double fgx[kLinearWidth], fgy[kLinearWidth], sgx[kLinearWidth], sgy[kLinearWidth];
-    fluid_poly_.evaluate_points(kf, eta, nv, fv, nullptr, nullptr);
-    solid_poly_.evaluate_points(mt.k, xi, nv, sv, nullptr, nullptr);
-    if (gradients_) {
-      double unused[kLinearWidth];
-      fluid_poly_.evaluate_points(kf, eta, 1, unused, fgx, fgy);
-      solid_poly_.evaluate_points(mt.k, xi, 1, unused, sgx, sgy);
-      const double(&j)[2][2] = mt.affine_value.jac;
-      for (int f = 0; f < fwidth_; ++f) {  // chain rule: grad_s (phi o X)_b = sum_a d_a phi dX_a/ds_b
-        const double g0 = fgx[f] * j[0][0] + fgy[f] * j[1][0], g1 = fgx[f] * j[0][1] + fgy[f] * j[1][1];
-        fgx[f] = opt_.c1 * piece_area * g0;
-        fgy[f] = opt_.c1 * piece_area * g1;
-      }
-    }
-    // corner sums per fan triangle, the fluid's scaled by W_t c2
-    double fsum[kLinearWidth * (Piece::kMaxVertices - 2)], ssum[kLinearWidth * (Piece::kMaxVertices - 2)];
-    const double c2 = opt_.c2;
+    report_.points += 1;
+    if (!(area > 0)) return;  // a piece of round-off size: nothing to add
+    cx /= area;
+    cy /= area;
+    mxx -= area * cx * cx;  // about the centroid
+    myy -= area * cy * cy;
+    mxy -= area * cx * cy;
+    const Point c{o.x + cx, o.y + cy};
+    const Point eta = fluid_poly_.to_reference(kf, c), xi = mt.affine_reference(c);
+    double fv[kLinearWidth], fgx[kLinearWidth], fgy[kLinearWidth], sv[kLinearWidth], sgx[kLinearWidth], sgy[kLinearWidth];
+    fluid_poly_.evaluate_affine(kf, eta, fv, fgx, fgy);
+    solid_poly_.evaluate_affine(mt.k, xi, sv, sgx, sgy);
+    const double(&j)[2][2] = mt.affine_value.jac;  // dX_a/ds_b
+    const double det = mt.affine_det, mass = opt_.c2 / det, stiff = opt_.c1 * area / det;
+    // per fluid function: c2/det (A phi(c), M grad phi), and the chain-rule gradient times c1 A / det
+    double fa[kLinearWidth], fmx[kLinearWidth], fmy[kLinearWidth], fcx[kLinearWidth], fcy[kLinearWidth];
     for (int f = 0; f < fwidth_; ++f) {
-      double* v = fv + f * nv;
-      for (int t = 0; t < nt; ++t) fsum[f * nt + t] = c2 * w[t] * (v[0] + v[t + 1] + v[t + 2]);
-      for (int k = 0; k < nv; ++k) v[k] *= c2 * omega[k];
+      fa[f] = mass * area * fv[f];
+      fmx[f] = mass * (mxx * fgx[f] + mxy * fgy[f]);
+      fmy[f] = mass * (mxy * fgx[f] + myy * fgy[f]);
+      fcx[f] = stiff * (fgx[f] * j[0][0] + fgy[f] * j[1][0]);
+      fcy[f] = stiff * (fgx[f] * j[0][1] + fgy[f] * j[1][1]);
     }
+    // per solid function: its gradient in y, (dX/ds)^-T grad_s psi
+    double syx[kLinearWidth], syy[kLinearWidth];
     for (int f = 0; f < swidth_; ++f) {
-      const double* v = sv + f * nv;
-      for (int t = 0; t < nt; ++t) ssum[f * nt + t] = v[0] + v[t + 1] + v[t + 2];
+      syx[f] = (j[1][1] * sgx[f] - j[1][0] * sgy[f]) / det;
+      syy[f] = (j[0][0] * sgy[f] - j[0][1] * sgx[f]) / det;
     }
     for (size_t p = 0; p < pair_fluid_.size(); ++p) {
       const std::vector<int>&fi = pair_fluid_[p], &si = pair_solid_[p];
       for (size_t a = 0; a < fi.size(); ++a) {
-        const int fa = fi[a];
+        const int f = fi[a];
         double* col = &block_[static_cast<size_t>(fcol_[frange_[p].first + static_cast<int>(a)]) * ns_ + srange_[p].first];
         for (size_t b = 0; b < si.size(); ++b) {
-          const int sb = si[b];
-          double sum = 0;
-          for (int k = 0; k < nv; ++k) sum += fv[fa * nv + k] * sv[sb * nv + k];
-          for (int t = 0; t < nt; ++t) sum += fsum[fa * nt + t] * ssum[sb * nt + t];
-          if (gradients_) sum += fgx[fa] * sgx[sb] + fgy[fa] * sgy[sb];
+          const int g = si[b];
+          double sum = fa[f] * sv[g] + fmx[f] * syx[g] + fmy[f] * syy[g];
+          if (gradients_) sum += fcx[f] * sgx[g] + fcy[f] * sgy[g];
           col[b] += sum;
         }
       }
@@ -453,7 +446,9 @@ class Worker {
       auto it = std::find(columns_.begin(), columns_.end(), g);
       if (it == columns_.end()) {
         columns_.push_back(g);
-        block_.resize(block_.size() + ns_, 0.0);
+        const size_t used = (columns_.size() - 1) * ns_;  // the block grows by one zero column
+        if (block_.size() < used + ns_) block_.resize(2 * (used + ns_));
+        std::fill(block_.begin() + used, block_.begin() + used + ns_, 0.0);
         fcol_[j] = static_cast<int>(columns_.size()) - 1;
       } else {
         fcol_[j] = static_cast<int>(it - columns_.begin());
@@ -514,7 +509,7 @@ class Worker {
   int hint_ = 0;
   std::vector<Range> frange_, srange_;
   std::vector<int> fluid_used_, solid_used_;
-  std::vector<double> fvals_, svals_, block_;  // block_: column-major, ns_ rows per column
+  std::vector<double> fvals_, svals_, block_;  // block_: column-major, ns_ rows per column of columns_ (and spare)
   std::vector<int> sdofs_, fcol_, columns_;
   // batch path
   bool batch_ = false, gradients_ = false;

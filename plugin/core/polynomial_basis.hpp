@@ -30,6 +30,25 @@ class PolynomialBasis {
   // first derivatives in the same layout.
   void evaluate_points(int k, const Point* xi, int n, double* value, double* dx, double* dy) const;
 
+  // Degree 0 or 1 only: the fitted functions' values at xi and their (constant) physical gradients, one
+  // entry per function.
+  void evaluate_affine(int k, Point xi, double* value, double* dx, double* dy) const {
+    const double* c = coefficients(k);
+    const double* j = &inverse_jacobian_[4 * static_cast<size_t>(k)];
+    const size_t width = functions_.size();
+    for (size_t f = 0; f < width; ++f, c += nm_) {
+      if (nm_ == 1) {
+        value[f] = c[0];
+        dx[f] = dy[f] = 0;
+        continue;
+      }
+      // monomials 1, xi1, xi2
+      value[f] = c[0] + c[1] * xi.x + c[2] * xi.y;
+      dx[f] = c[1] * j[0] + c[2] * j[2];
+      dy[f] = c[1] * j[1] + c[2] * j[3];
+    }
+  }
+
   // The reference coordinates of point x in element k (the inverse of the element's affine map).
   Point to_reference(int k, Point x) const {
     const double* j = &inverse_jacobian_[4 * static_cast<size_t>(k)];
