@@ -122,6 +122,61 @@ TEST(Coupling, KinkedDataMatchesBruteForceSupermesh) {
   EXPECT_NEAR(form(b, lh, uh), want, 1e-13 * std::fabs(want) + 1e-15);
 }
 
+// The same brute force with both terms and a map that is not a rigid motion (shear and stretch, det 1.38):
+// c2 lam u(X) / 1 + c1 grad_s lam . (A^T grad_y u), integrated over the pieces in the fluid with ds = dy / det A.
+// The gradients come from each triangle's nodal values by solving the 2 x 2 system of its edges.
+TEST(Coupling, KinkedDataUnderShearMatchesBruteForceWithGradients) {
+  Mesh fluid = test::grid_mesh(7, 6, -0.2, -0.3, 1.5, 1.4, true);
+  Mesh solid = test::grid_mesh(4, 3, 0.25, 0.2, 0.45, 0.5);
+  const double a[2][2] = {{1.1, 0.35}, {-0.2, 1.19}}, det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+  test::AffineMap map(solid, a[0][0], a[0][1], a[1][0], a[1][1], 0.05, -0.1);
+  test::P1 vf(fluid), vs(solid);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<double> uh(fluid.vertices.size()), lh(solid.vertices.size());
+  for (auto& v : uh) v = u(rng);
+  for (auto& v : lh) v = u(rng);
+  auto gradient = [](const Point c[3], const double v[3]) {
+    const Point e1 = c[1] - c[0], e2 = c[2] - c[0];
+    const double d = cross(e1, e2), g1 = v[1] - v[0], g2 = v[2] - v[0];
+    return Point{(g1 * e2.y - g2 * e1.y) / d, (g2 * e1.x - g1 * e2.x) / d};
+  };
+  CouplingOptions opt;
+  opt.c1 = 0.7;
+  opt.c2 = 3;
+  CouplingReport rep;
+  CsrMatrix b = assemble_coupling(fluid, vf, solid, vs, map, opt, &rep);
+  EXPECT_LT(rep.outside_area, 1e-14 * rep.image_area);
+  long double want = 0;
+  for (int ks = 0; ks < solid.size(); ++ks) {
+    Point sc[3], ic[3];
+    solid.corners(ks, sc);
+    for (int i = 0; i < 3; ++i) ic[i] = {a[0][0] * sc[i].x + a[0][1] * sc[i].y + 0.05, a[1][0] * sc[i].x + a[1][1] * sc[i].y - 0.1};
+    const double ls[3] = {lh[solid.triangles[ks][0]], lh[solid.triangles[ks][1]], lh[solid.triangles[ks][2]]};
+    const Point gl = gradient(sc, ls);
+    for (int kf = 0; kf < fluid.size(); ++kf) {
+      Point fc[3];
+      fluid.corners(kf, fc);
+      const double uf[3] = {uh[fluid.triangles[kf][0]], uh[fluid.triangles[kf][1]], uh[fluid.triangles[kf][2]]};
+      const Point gu = gradient(fc, uf);
+      const Point gs{a[0][0] * gu.x + a[1][0] * gu.y, a[0][1] * gu.x + a[1][1] * gu.y};  // A^T grad u
+      Piece p = clip(ic, fc);
+      for (int t = 1; t + 1 < p.n; ++t) {
+        Point tri[3] = {p.v[0], p.v[t], p.v[t + 1]};
+        const double area = 0.5 * area2(tri[0], tri[1], tri[2]);
+        for (const auto& q : triangle_rule(2)) {
+          Point y = from_reference(tri, q.xi);
+          Point xf = to_reference(fc, y), xs = to_reference(ic, y);
+          const double uv = uf[0] * (1 - xf.x - xf.y) + uf[1] * xf.x + uf[2] * xf.y;
+          const double lv = ls[0] * (1 - xs.x - xs.y) + ls[1] * xs.x + ls[2] * xs.y;
+          want += area * q.weight / det * (opt.c2 * uv * lv + opt.c1 * (gl.x * gs.x + gl.y * gs.y));
+        }
+      }
+    }
+  }
+  EXPECT_NEAR(form(b, lh, uh), static_cast<double>(want), 1e-13 * std::fabs(static_cast<double>(want)));
+}
+
 TEST(CouplingErrors, OutsideTheFluidIsAnErrorUnlessDropped) {
   Mesh fluid = test::grid_mesh(4, 4, 0, 0, 1, 1);
   Mesh solid = test::grid_mesh(2, 2, 0.8, 0.4, 0.4, 0.2);
