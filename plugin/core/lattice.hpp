@@ -23,6 +23,7 @@ const std::vector<double>& vandermonde_inverse(int d);
 // The powers xi1^i and xi2^i, i = 0..d.
 inline void powers(int d, Point xi, double* p1, double* p2) {
   p1[0] = p2[0] = 1;
+#pragma GCC unroll 8
   for (int i = 1; i <= d; ++i) {
     p1[i] = p1[i - 1] * xi.x;
     p2[i] = p2[i - 1] * xi.y;
@@ -34,7 +35,9 @@ inline void monomial_values(int d, Point xi, double* value) {
   double p1[kMaxLatticeDegree + 1], p2[kMaxLatticeDegree + 1];
   powers(d, xi, p1, p2);
   int m = 0;
+#pragma GCC unroll 9
   for (int t = 0; t <= d; ++t)
+#pragma GCC unroll 9
     for (int b = 0; b <= t; ++b, ++m) value[m] = p1[t - b] * p2[b];
 }
 
@@ -43,7 +46,9 @@ inline void monomials(int d, Point xi, double* value, double* d1, double* d2) {
   double p1[kMaxLatticeDegree + 1], p2[kMaxLatticeDegree + 1];
   powers(d, xi, p1, p2);
   int m = 0;
+#pragma GCC unroll 9
   for (int t = 0; t <= d; ++t)
+#pragma GCC unroll 9
     for (int b = 0; b <= t; ++b, ++m) {
       const int a = t - b;
       value[m] = p1[a] * p2[b];

@@ -121,18 +121,31 @@ namespace {
 template <int D>
 void evaluate_polynomial(int d, const double* cx, const double* cy, Point xi, Point& x, Point& dx1, Point& dx2) {
   const int degree = D >= 0 ? D : d;
-  double v[monomial_count(MappedTriangle::kMaxDegree)], d1[monomial_count(MappedTriangle::kMaxDegree)],
-      d2[monomial_count(MappedTriangle::kMaxDegree)];
-  monomials(degree, xi, v, d1, d2);
+  double p1[MappedTriangle::kMaxDegree + 1], p2[MappedTriangle::kMaxDegree + 1];
+  powers(degree, xi, p1, p2);
+  // monomial m = xi1^a xi2^b in order of t = a + b, then b: d/dxi1 = a xi1^(a-1) xi2^b, d/dxi2 = b xi1^a xi2^(b-1).
   // Local sums: the outputs may alias memory the compiler cannot keep in registers.
-  double x0 = 0, x1 = 0, a0 = 0, a1 = 0, b0 = 0, b1 = 0;
-  for (int m = 0; m < monomial_count(degree); ++m) {
-    x0 += cx[m] * v[m];
-    x1 += cy[m] * v[m];
-    a0 += cx[m] * d1[m];
-    a1 += cy[m] * d1[m];
-    b0 += cx[m] * d2[m];
-    b1 += cy[m] * d2[m];
+  double x0 = cx[0], x1 = cy[0], a0 = 0, a1 = 0, b0 = 0, b1 = 0;
+  int m = 1;
+#pragma GCC unroll 8
+  for (int t = 1; t <= degree; ++t) {
+#pragma GCC unroll 8
+    for (int b = 0; b <= t; ++b, ++m) {
+      const int a = t - b;
+      const double v = p1[a] * p2[b];
+      x0 += cx[m] * v;
+      x1 += cy[m] * v;
+      if (a > 0) {
+        const double g = a * p1[a - 1] * p2[b];
+        a0 += cx[m] * g;
+        a1 += cy[m] * g;
+      }
+      if (b > 0) {
+        const double g = b * p1[a] * p2[b - 1];
+        b0 += cx[m] * g;
+        b1 += cy[m] * g;
+      }
+    }
   }
   x = {x0, x1};
   dx1 = {a0, a1};
@@ -155,12 +168,16 @@ MapValue MappedTriangle::at(Point xi) const {
   MapValue v;
   Point d1, d2;
   polynomial(xi, v.x, d1, d2);
+  set_jacobian(d1, d2, v);
+  return v;
+}
+
+void MappedTriangle::set_jacobian(Point d1, Point d2, MapValue& v) const {
   // dX/ds = dX/dxi (ds/dxi)^-1
   v.jac[0][0] = d1.x * inv_[0][0] + d2.x * inv_[1][0];
   v.jac[0][1] = d1.x * inv_[0][1] + d2.x * inv_[1][1];
   v.jac[1][0] = d1.y * inv_[0][0] + d2.y * inv_[1][0];
   v.jac[1][1] = d1.y * inv_[0][1] + d2.y * inv_[1][1];
-  return v;
 }
 
 void MappedTriangle::prepare(const Mesh& solid_mesh, const SolidMap& map, int kk) {
@@ -294,24 +311,44 @@ Point MappedTriangle::pull_back(Point y, MapValue& value) const {
 
 Point MappedTriangle::pull_back(Point y, Point xi, MapValue& value) const {
   if (affine) return pull_back(y, value);
+  // Newton on X(xi) = y with dX/dxi = [d1 d2] (d1, d2: the derivatives in xi1, xi2); its determinant has
+  // the sign of det dX/ds (the solid triangle is counter-clockwise).
+  const bool fitted = degree_ >= 1;
   const Point e1 = solid[1] - solid[0], e2 = solid[2] - solid[0];
+  auto evaluate = [&](Point at_xi, Point& x, Point& d1, Point& d2) {
+    if (fitted) {
+      polynomial(at_xi, x, d1, d2);
+      return;
+    }
+    value = map_->evaluate(k, at_xi);
+    x = value.x;
+    d1 = {value.jac[0][0] * e1.x + value.jac[0][1] * e1.y, value.jac[1][0] * e1.x + value.jac[1][1] * e1.y};
+    d2 = {value.jac[0][0] * e2.x + value.jac[0][1] * e2.y, value.jac[1][0] * e2.x + value.jac[1][1] * e2.y};
+  };
+  auto finish = [&](Point x, Point d1, Point d2) {
+    if (!fitted) return;  // value already holds X and dX/ds there
+    value.x = x;
+    set_jacobian(d1, d2, value);
+  };
   double previous = 1e300;
   for (int it = 0; it < 40; ++it) {
-    value = at(xi);
-    // d X / d xi = jac * [e1 e2]
-    const double a = value.jac[0][0] * e1.x + value.jac[0][1] * e1.y, b = value.jac[0][0] * e2.x + value.jac[0][1] * e2.y;
-    const double c = value.jac[1][0] * e1.x + value.jac[1][1] * e1.y, d = value.jac[1][0] * e2.x + value.jac[1][1] * e2.y;
-    const double det = a * d - b * c;
+    Point x, d1, d2;
+    evaluate(xi, x, d1, d2);
+    const double det = d1.x * d2.y - d2.x * d1.y;
     if (!(det > 0)) throw Error("the map folds " + name(k) + " (jacobian determinant " + std::to_string(det) + ")");
-    const Point r = y - value.x;
-    const Point step{(d * r.x - b * r.y) / det, (a * r.y - c * r.x) / det};
+    const Point r = y - x;
+    const Point step{(d2.y * r.x - d2.x * r.y) / det, (d1.x * r.y - d1.y * r.x) / det};
     xi = xi + step;
     const double size = std::fabs(step.x) + std::fabs(step.y);
     // Converged: the jacobian just computed is off by O(size) times the map's small nonlinearity.
-    if (size < 1e-12) return xi;
+    if (size < 1e-12) {
+      finish(x, d1, d2);
+      return xi;
+    }
     // Stalled at the round-off floor (quadratic convergence would have halved the step).
     if (size < 1e-9 && size > 0.5 * previous) {
-      value = at(xi);
+      evaluate(xi, x, d1, d2);
+      finish(x, d1, d2);
       return xi;
     }
     previous = size;

@@ -96,6 +96,8 @@ class MappedTriangle {
   void classify();
   // value and reference-coordinate derivatives of the fitted polynomial
   void polynomial(Point xi, Point& x, Point& dx1, Point& dx2) const;
+  // v.jac = dX/ds from the reference derivatives d1 = dX/dxi1, d2 = dX/dxi2
+  void set_jacobian(Point d1, Point d2, MapValue& v) const;
   const SolidMap* map_ = nullptr;
   int degree_ = -1;
   double cx_[(kMaxDegree + 1) * (kMaxDegree + 2) / 2], cy_[(kMaxDegree + 1) * (kMaxDegree + 2) / 2];  // monomial coefficients
