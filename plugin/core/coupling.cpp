@@ -92,6 +92,7 @@ class Worker {
         pair_fluid_.push_back(index_in(fluid_poly_.functions(), opt.fluid_components[p], ncf_, frange_[p]));
         pair_solid_.push_back(index_in(solid_poly_.functions(), opt.solid_components[p], ncs_, srange_[p]));
       }
+      find_pair_twins();
     }
     sdofs_.resize(ns_);
     fcol_.resize(nf_);
@@ -277,11 +278,15 @@ class Worker {
     const size_t fn = n * fwidth_, sn = n * swidth_;
     fluid_poly_.evaluate_points(kf, peta_.data(), np, fv, gradients_ ? fv + fn : nullptr, gradients_ ? fv + 2 * fn : nullptr);
     solid_poly_.evaluate_points(mt.k, pxi_.data(), np, sv, gradients_ ? sv + sn : nullptr, gradients_ ? sv + 2 * sn : nullptr);
+    // Pairs that repeat an earlier pair's functions (on elements of the shared fits) copy its sums.
+    const bool twins = fluid_poly_.shared(kf) && solid_poly_.shared(mt.k);
+    const std::vector<char>& used = twins ? fluid_used_by_sources_ : fluid_used_by_pairs_;
     // Fluid values and chain-rule gradients with the weights folded in, per function along the points.
     const double c2 = opt_.c2;
     const double(&aj)[2][2] = mt.affine_value.jac;
     const std::array<double, 4> affine_jac{aj[0][0], aj[0][1], aj[1][0], aj[1][1]};
     for (size_t f = 0; f < static_cast<size_t>(fwidth_); ++f) {
+      if (!used[f]) continue;
       double* v = fv + f * n;
       for (size_t k = 0; k < n; ++k) v[k] *= c2 * weight_[k];
       if (!gradients_) continue;
@@ -296,10 +301,10 @@ class Worker {
       }
     }
     for (size_t p = 0; p < pair_fluid_.size(); ++p) {
+      if (twins && pair_source_[p] >= 0) continue;  // added with its source
       const std::vector<int>&fi = pair_fluid_[p], &si = pair_solid_[p];
       for (size_t a = 0; a < fi.size(); ++a) {
         const double* phi = fv + static_cast<size_t>(fi[a]) * n;
-        double* col = &block_[static_cast<size_t>(fcol_[frange_[p].first + static_cast<int>(a)]) * ns_ + srange_[p].first];
         for (size_t b = 0; b < si.size(); ++b) {
           const double* psi = sv + static_cast<size_t>(si[b]) * n;
           double sum = 0;
@@ -308,10 +313,47 @@ class Worker {
             const double *px = psi + sn, *py = psi + 2 * sn, *gx = phi + fn, *gy = phi + 2 * fn;
             for (size_t k = 0; k < n; ++k) sum += px[k] * gx[k] + py[k] * gy[k];
           }
-          col[b] += sum;
+          add_to_block(p, a, b, sum);
+          if (twins)
+            for (int copy : pair_copies_[p]) add_to_block(copy, a, b, sum);
         }
       }
     }
+  }
+
+  // block entry of pair p's a-th fluid dof and b-th multiplier dof
+  void add_to_block(size_t p, size_t a, size_t b, double value) {
+    block_[static_cast<size_t>(fcol_[frange_[p].first + static_cast<int>(a)]) * ns_ + srange_[p].first + b] += value;
+  }
+
+  // Pair q repeats an earlier pair p when, function by function, both sides' functions are twins (or the same):
+  // on elements of the shared fits its sums are p's, bit for bit. Also which fluid functions any pair reads,
+  // and which the pairs that are computed read.
+  void find_pair_twins() {
+    const size_t np = pair_fluid_.size();
+    pair_source_.assign(np, -1);
+    pair_copies_.assign(np, {});
+    auto rep = [](const PolynomialBasis& poly, int f) { return poly.twin(f) >= 0 ? poly.twin(f) : f; };
+    auto same = [&](const std::vector<int>& x, const std::vector<int>& y, const PolynomialBasis& poly) {
+      if (x.size() != y.size()) return false;
+      for (size_t i = 0; i < x.size(); ++i)
+        if (rep(poly, x[i]) != rep(poly, y[i])) return false;
+      return true;
+    };
+    for (size_t q = 0; q < np; ++q)
+      for (size_t p = 0; p < q && pair_source_[q] < 0; ++p)
+        if (pair_source_[p] < 0 && same(pair_fluid_[p], pair_fluid_[q], fluid_poly_) &&
+            same(pair_solid_[p], pair_solid_[q], solid_poly_)) {
+          pair_source_[q] = static_cast<int>(p);
+          pair_copies_[p].push_back(static_cast<int>(q));
+        }
+    fluid_used_by_pairs_.assign(fwidth_, 0);
+    fluid_used_by_sources_.assign(fwidth_, 0);
+    for (size_t p = 0; p < np; ++p)
+      for (int f : pair_fluid_[p]) {
+        fluid_used_by_pairs_[f] = 1;
+        if (pair_source_[p] < 0) fluid_used_by_sources_[f] = 1;
+      }
   }
 
   // Both bases of degree <= 1 and X affine on the triangle: on the piece P (area A, centroid c, central second
@@ -519,6 +561,9 @@ class Worker {
   const std::vector<RulePoint>* affine_rule_ = nullptr;  // exact for the product of the bases
   int fwidth_ = 0, swidth_ = 0;
   std::vector<std::vector<int>> pair_fluid_, pair_solid_;  // per pair: fitted-function index of each local dof
+  std::vector<int> pair_source_;                  // per pair: the earlier pair it repeats, or -1
+  std::vector<std::vector<int>> pair_copies_;     // per pair: the later pairs that repeat it
+  std::vector<char> fluid_used_by_pairs_, fluid_used_by_sources_;  // per fitted fluid function
   std::vector<double> weight_, fbatch_, sbatch_;
   std::vector<Point> peta_, pxi_;
   std::vector<std::array<double, 4>> pjac_;

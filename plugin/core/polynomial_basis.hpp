@@ -60,6 +60,10 @@ class PolynomialBasis {
   int degree() const { return degree_; }
   // The fitted functions, as dof * components + component.
   const std::vector<int>& functions() const { return functions_; }
+  // Does element k use the shared fit? There, function f equals function twin(f) (an earlier one, with the
+  // same coefficients bit for bit) when twin(f) >= 0: the components of a vector space of one element.
+  bool shared(int k) const { return slot_[k] < 0; }
+  int twin(int f) const { return twin_.empty() ? -1 : twin_[f]; }
   // Monomial coefficients (monomial_count(degree) per function, in functions() order) on element k.
   const double* coefficients(int k) const { return slot_[k] < 0 ? reference_.data() : &own_[slot_[k]]; }
 
