@@ -67,6 +67,28 @@ PolynomialBasis::PolynomialBasis(const Basis& basis, const Mesh& mesh, int degre
       if (twin_[g] < 0 && std::equal(&reference_[f * nm_], &reference_[f * nm_] + nm_, &reference_[g * nm_]))
         twin_[f] = static_cast<int>(g);
   for (int k = 1; k < mesh.size(); ++k) check(k);
+  derive(reference_, reference_derivative_);
+  derive(own_, own_derivative_);
+}
+
+void PolynomialBasis::derive(const std::vector<double>& coefficients, std::vector<double>& derivative) const {
+  // d/dxi1 of xi1^a xi2^b is a xi1^(a-1) xi2^b, monomial (t - 1)t/2 + b of degree t - 1 = a + b - 1; likewise
+  // d/dxi2 gives b xi1^a xi2^(b-1), monomial (t - 1)t/2 + b - 1.
+  const int nm1 = monomial_count(degree_ - 1);
+  const size_t count = coefficients.size() / nm_;
+  derivative.assign(count * 2 * nm1, 0.0);
+  for (size_t f = 0; f < count; ++f) {
+    const double* c = &coefficients[f * nm_];
+    double* d1 = &derivative[f * 2 * nm1];
+    double* d2 = d1 + nm1;
+    int m = 0;
+    for (int t = 0; t <= degree_; ++t)
+      for (int b = 0; b <= t; ++b, ++m) {
+        const int a = t - b;
+        if (a > 0) d1[(t - 1) * t / 2 + b] += a * c[m];
+        if (b > 0) d2[(t - 1) * t / 2 + b - 1] += b * c[m];
+      }
+  }
 }
 
 void PolynomialBasis::fit(int k, double* c) {
@@ -145,52 +167,54 @@ void PolynomialBasis::evaluate(int k, Point xi, double* out) const {
 template <int NM>
 void PolynomialBasis::evaluate_points_fitted(int k, const Point* xi, int n, double* value, double* dx,
                                              double* dy) const {
+  // Monomial-major: mono[m * n + p] is monomial m at point p, so that each function's sums run along the
+  // points (vectorizable); the derivatives come from the derivative polynomials' coefficients (degree - 1).
+  constexpr int kDegree = NM == 1 ? 0 : NM == 3 ? 1 : NM == 6 ? 2 : NM == 10 ? 3 : -1;
+  const int degree = kDegree >= 0 ? kDegree : degree_;
   const int nm = NM > 0 ? NM : nm_;
-  const int degree = NM == 1 ? 0 : NM == 3 ? 1 : NM == 6 ? 2 : NM == 10 ? 3 : degree_;
+  const int nm1 = monomial_count(degree - 1);
   const size_t width = functions_.size();
   const double* coef = coefficients(k);
+  const double* deriv = derivative_coefficients(k);
   const double* j = &inverse_jacobian_[4 * static_cast<size_t>(k)];
-  double v[monomial_count(kMaxLatticeDegree)], d1[monomial_count(kMaxLatticeDegree)], d2[monomial_count(kMaxLatticeDegree)];
   const bool shared = slot_[k] < 0;
-  // the twins' rows: copies of the rows they repeat
-  auto copy_twins = [&] {
-    if (!shared) return;
-    for (size_t f = 0; f < width; ++f)
-      if (twin_[f] >= 0)
-        for (double* plane : {value, dx, dy})
-          if (plane) std::copy(plane + twin_[f] * n, plane + (twin_[f] + 1) * n, plane + f * n);
-  };
-  if (!dx) {  // values only
-    for (int p = 0; p < n; ++p) {
-      monomial_values(degree, xi[p], v);
-      const double* c = coef;
-      for (size_t f = 0; f < width; ++f, c += nm) {
-        if (shared && twin_[f] >= 0) continue;
-        double val = 0;
-        for (int m = 0; m < nm; ++m) val += c[m] * v[m];
-        value[f * n + p] = val;
-      }
-    }
-    copy_twins();
-    return;
-  }
+  thread_local std::vector<double> scratch;
+  if (scratch.size() < static_cast<size_t>(nm) * n) scratch.resize(static_cast<size_t>(nm) * n);
+  double* mono = scratch.data();
   for (int p = 0; p < n; ++p) {
-    monomials(degree, xi[p], v, d1, d2);
-    const double* c = coef;
-    for (size_t f = 0; f < width; ++f, c += nm) {
-      if (shared && twin_[f] >= 0) continue;
-      double val = 0, g1 = 0, g2 = 0;
-      for (int m = 0; m < nm; ++m) {
-        val += c[m] * v[m];
-        g1 += c[m] * d1[m];
-        g2 += c[m] * d2[m];
+    double v[monomial_count(kMaxLatticeDegree)];
+    monomial_values(degree, xi[p], v);
+    for (int m = 0; m < nm; ++m) mono[static_cast<size_t>(m) * n + p] = v[m];
+  }
+  for (size_t f = 0; f < width; ++f) {
+    if (shared && twin_[f] >= 0) continue;
+    const double* c = coef + f * nm;
+    double* out = value + f * n;
+    for (int p = 0; p < n; ++p) out[p] = c[0];  // monomial 0 is 1
+    for (int m = 1; m < nm; ++m) {
+      const double cm = c[m];
+      const double* row = mono + static_cast<size_t>(m) * n;
+      for (int p = 0; p < n; ++p) out[p] += cm * row[p];
+    }
+    if (!dx) continue;
+    const double *e1 = deriv + f * 2 * nm1, *e2 = e1 + nm1;
+    double *gx = dx + f * n, *gy = dy + f * n;
+    for (int p = 0; p < n; ++p) {
+      double g1 = 0, g2 = 0;
+      for (int m = 0; m < nm1; ++m) {
+        g1 += e1[m] * mono[static_cast<size_t>(m) * n + p];
+        g2 += e2[m] * mono[static_cast<size_t>(m) * n + p];
       }
-      value[f * n + p] = val;
-      dx[f * n + p] = g1 * j[0] + g2 * j[2];
-      dy[f * n + p] = g1 * j[1] + g2 * j[3];
+      gx[p] = g1 * j[0] + g2 * j[2];
+      gy[p] = g1 * j[1] + g2 * j[3];
     }
   }
-  copy_twins();
+  // the twins' rows: copies of the rows they repeat
+  if (!shared) return;
+  for (size_t f = 0; f < width; ++f)
+    if (twin_[f] >= 0)
+      for (double* plane : {value, dx, dy})
+        if (plane) std::copy(plane + twin_[f] * n, plane + (twin_[f] + 1) * n, plane + f * n);
 }
 
 void PolynomialBasis::evaluate_points(int k, const Point* xi, int n, double* value, double* dx, double* dy) const {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "basis.hpp"
+#include "lattice.hpp"
 #include "mesh.hpp"
 
 namespace dlmfsi {
@@ -66,9 +67,15 @@ class PolynomialBasis {
   int twin(int f) const { return twin_.empty() ? -1 : twin_[f]; }
   // Monomial coefficients (monomial_count(degree) per function, in functions() order) on element k.
   const double* coefficients(int k) const { return slot_[k] < 0 ? reference_.data() : &own_[slot_[k]]; }
+  // The coefficients of each function's derivatives in xi1 then xi2 (monomial_count(degree - 1) each).
+  const double* derivative_coefficients(int k) const {
+    return slot_[k] < 0 ? reference_derivative_.data()
+                        : &own_derivative_[slot_[k] / nm_ * 2 * static_cast<size_t>(monomial_count(degree_ - 1))];
+  }
 
  private:
   void fit(int k, double* coefficients);
+  void derive(const std::vector<double>& coefficients, std::vector<double>& derivative) const;
   void check(int k);
   template <int NM>
   void evaluate_fitted(const double* coef, const double* jac, const double* v, const double* d1, const double* d2,
@@ -83,6 +90,7 @@ class PolynomialBasis {
   std::vector<int> twin_;          // per function: an earlier function with the same shared fit, or -1
   std::vector<int> slot_;          // per element: -1 shared fit, else offset in own_
   std::vector<double> own_;        // element fits that differ from the shared one
+  std::vector<double> reference_derivative_, own_derivative_;  // derivative_coefficients of both
   std::vector<double> inverse_jacobian_;  // per element: d xi / d x, 4 entries (any basis: to_reference)
   std::vector<double> sample_, check_;
 };
