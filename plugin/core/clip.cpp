@@ -63,6 +63,29 @@ Piece clip(const Point a[3], const Point b[3], unsigned& beyond) {
     return out;
   };
   if (beyond == 0) return whole(a);  // a in closed b
+  // a reaches beyond one edge line j of b only: a ∩ b = a ∩ (closed side of line j). With no vertex of a on
+  // that line and b's edge crossing a's two cut edges properly (exact signs), the piece is a's vertices on
+  // the inner side and the two crossings, as the general construction below would find them.
+  if ((beyond & (beyond - 1)) == 0) {
+    const int j = beyond == 1 ? 0 : (beyond == 2 ? 1 : 2), j1 = (j + 1) % 3;
+    const int* side = side_ab[j];
+    if (side[0] != 0 && side[1] != 0 && side[2] != 0) {
+      bool proper = true;
+      for (int i = 0; i < 3 && proper; ++i) {
+        const int i1 = (i + 1) % 3;
+        if (side[i] != side[i1])
+          proper = orient2d(a[i], a[i1], b[j]) * orient2d(a[i], a[i1], b[j1]) < 0;
+      }
+      if (proper) {
+        for (int i = 0; i < 3; ++i) {
+          const int i1 = (i + 1) % 3;
+          if (side[i] > 0) out.v[out.n++] = a[i];
+          if (side[i] != side[i1]) out.v[out.n++] = crossing(a[i], a[i1], b[j], b[j1]);
+        }
+        return out;
+      }
+    }
+  }
   bool b_inside = true;
   for (int i = 0; i < 3; ++i) {
     bool separates = true;

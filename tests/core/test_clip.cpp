@@ -83,6 +83,40 @@ TEST(Clip, PiecesAreConvexCounterClockwise) {
   }
 }
 
+// A small triangle a across one edge of b only (the half-plane case): the pieces in b and in b's neighbour
+// across that edge match the long-double clipper, tile a, and share the two crossings bit for bit.
+TEST(Clip, AcrossOneEdgeTilesWithTheNeighbour) {
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> u(0, 1);
+  int cases = 0;
+  for (int it = 0; it < 20000; ++it) {
+    const Point p{u(rng), u(rng)}, q{u(rng) + 1, u(rng)}, r{u(rng) + 0.5, u(rng) + 1}, s{u(rng) + 0.5, u(rng) - 1};
+    Point b[3] = {p, q, r}, c[3] = {q, p, s};  // b and its neighbour c share the edge p q
+    if (orient2d(b[0], b[1], b[2]) <= 0 || orient2d(c[0], c[1], c[2]) <= 0) continue;
+    const double t = 0.2 + 0.6 * u(rng), h = 0.05 * u(rng) + 1e-3;
+    const Point m{p.x + t * (q.x - p.x), p.y + t * (q.y - p.y)};
+    Point a[3] = {{m.x + h * (u(rng) - 0.5), m.y + h * (u(rng) - 0.5)}, {m.x + h * (u(rng) - 0.5), m.y + h * (u(rng) - 0.5)},
+                  {m.x + h * (u(rng) - 0.5), m.y + h * (u(rng) - 0.5)}};
+    if (orient2d(a[0], a[1], a[2]) == 0) continue;
+    ccw(a);
+    unsigned beyond_b, beyond_c;
+    const Piece in_b = clip(a, b, beyond_b), in_c = clip(a, c, beyond_c);
+    if (beyond_b != 1u || beyond_c != 1u) continue;  // a reaches beyond edge p q of both, and no other
+    ++cases;
+    ASSERT_NEAR(in_b.area(), static_cast<double>(reference_area(a, b)), 1e-15) << it;  // coordinates ~1
+    ASSERT_NEAR(in_c.area(), static_cast<double>(reference_area(a, c)), 1e-15) << it;
+    ASSERT_NEAR(in_b.area() + in_c.area(), tri_area(a), 1e-15) << it;
+    int shared = 0;
+    for (int i = 0; i < in_b.n; ++i)
+      for (int k = 0; k < in_c.n; ++k) shared += in_b.v[i] == in_c.v[k];
+    ASSERT_EQ(shared, 2) << it;  // the two crossings, identical doubles
+    for (const Piece* piece : {&in_b, &in_c})
+      for (int i = 0; i < piece->n; ++i)
+        ASSERT_GE(orient2d(piece->v[i], piece->v[(i + 1) % piece->n], piece->v[(i + 2) % piece->n]), 0);
+  }
+  EXPECT_GT(cases, 10000);
+}
+
 // --- a catalogue of degeneracies, each named after its configuration ---
 
 TEST(ClipDegenerate, IdenticalTriangles) {
@@ -124,6 +158,28 @@ TEST(ClipDegenerate, ContainedTriangleSharingAVertex) {
   Point a[3] = {{0, 0}, {4, 0}, {0, 4}}, b[3] = {{0, 0}, {1, 0}, {0, 1}};
   EXPECT_NEAR(clip(a, b).area(), 0.5, 1e-16);
   EXPECT_NEAR(clip(b, a).area(), 0.5, 1e-16);
+}
+
+// a reaches beyond one edge line of b (y = 0) only, but b's corner (1, 0) lies on a's cut edge (along b's
+// edge x + y = 1): the corner is a vertex of both pieces, exactly, and they tile a (dyadic coordinates: the
+// areas are exact). The one-edge shortcut must leave this case to the general construction.
+TEST(ClipDegenerate, OneEdgeCutThroughAFluidCorner) {
+  Point a[3] = {{1.125, -0.125}, {0.875, 0.125}, {0.625, 0.125}};
+  Point b[3] = {{0, 0}, {1, 0}, {0, 1}}, c[3] = {{1, 0}, {0, 0}, {3, -1}};
+  unsigned beyond;
+  const Piece in_b = clip(a, b, beyond);
+  EXPECT_EQ(beyond, 1u);
+  const Piece in_c = clip(a, c);
+  auto has = [](const Piece& p, Point v) {
+    for (int i = 0; i < p.n; ++i)
+      if (p.v[i] == v) return true;
+    return false;
+  };
+  EXPECT_TRUE(has(in_b, {1, 0}));
+  EXPECT_TRUE(has(in_c, {1, 0}));
+  // b and c share the edge (0, 0) (1, 0) and cover a
+  EXPECT_EQ(in_b.area() + in_c.area(), 0.5 * area2(a[0], a[1], a[2]));
+  EXPECT_NEAR(in_b.area(), static_cast<double>(reference_area(a, b)), 1e-17);
 }
 
 TEST(ClipDegenerate, HexagonFromStarOfDavid) {
