@@ -26,6 +26,48 @@ struct Rotation {
   Point operator()(Point p) const { return {c * p.x - s * p.y + bx, s * p.x + c * p.y + by}; }
 };
 
+// Brute force over every (solid, fluid) pair, no search: the solid triangle's image (corners mapped by image)
+// clipped against each fluid triangle, a degree-2 rule on each piece's fan, and at each point
+// integrand(ks, kf, xs, xf) with the point's reference coordinates in the image and in the fluid triangle.
+template <class Image, class Integrand>
+long double brute_force(const Mesh& fluid, const Mesh& solid, Image image, Integrand integrand) {
+  long double sum = 0;
+  for (int ks = 0; ks < solid.size(); ++ks) {
+    Point sc[3], ic[3];
+    solid.corners(ks, sc);
+    for (int i = 0; i < 3; ++i) ic[i] = image(sc[i]);
+    for (int kf = 0; kf < fluid.size(); ++kf) {
+      Point fc[3];
+      fluid.corners(kf, fc);
+      const Piece p = clip(ic, fc);
+      for (int t = 1; t + 1 < p.n; ++t) {
+        const Point tri[3] = {p.v[0], p.v[t], p.v[t + 1]};
+        const double area = 0.5 * area2(tri[0], tri[1], tri[2]);
+        for (const auto& q : triangle_rule(2)) {
+          const Point y = from_reference(tri, q.xi);
+          sum += area * q.weight * integrand(ks, kf, to_reference(ic, y), to_reference(fc, y));
+        }
+      }
+    }
+  }
+  return sum;
+}
+
+// n values uniform in [-1, 1] (nodal data with kinks on every edge)
+std::vector<double> random_values(size_t n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<double> v(n);
+  for (auto& x : v) x = u(rng);
+  return v;
+}
+
+// A P1 function's value at reference point xi of triangle k from its nodal values.
+double p1_value(const Mesh& mesh, const std::vector<double>& nodal, int k, Point xi) {
+  const auto& t = mesh.triangles[k];
+  return nodal[t[0]] * (1 - xi.x - xi.y) + nodal[t[1]] * xi.x + nodal[t[2]] * xi.y;
+}
+
 }  // namespace
 
 // Linear data on both sides, affine map: u o X is linear on each solid triangle, so a degree-2 rule on the
@@ -86,39 +128,17 @@ TEST(Coupling, KinkedDataMatchesBruteForceSupermesh) {
   Mesh solid = test::grid_mesh(3, 3, 0.25, 0.2, 0.45, 0.5);
   test::AffineMap map(solid, std::cos(0.7), -std::sin(0.7), std::sin(0.7), std::cos(0.7), 0.3, -0.2);
   test::P1 vf(fluid), vs(solid);
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<double> uh(fluid.vertices.size()), lh(solid.vertices.size());
-  for (auto& v : uh) v = u(rng);
-  for (auto& v : lh) v = u(rng);
+  const std::vector<double> uh = random_values(fluid.vertices.size(), 5), lh = random_values(solid.vertices.size(), 105);
   CouplingOptions opt;
   opt.c1 = 0;
   opt.c2 = 1;
   CsrMatrix b = assemble_coupling(fluid, vf, solid, vs, map, opt);
-  double want = 0;
-  for (int ks = 0; ks < solid.size(); ++ks) {
-    Point sc[3], ic[3];
-    solid.corners(ks, sc);
-    for (int i = 0; i < 3; ++i) ic[i] = map.evaluate(ks, i == 0 ? Point{0, 0} : (i == 1 ? Point{1, 0} : Point{0, 1})).x;
-    for (int kf = 0; kf < fluid.size(); ++kf) {
-      Point fc[3];
-      fluid.corners(kf, fc);
-      Piece p = clip(ic, fc);
-      for (int t = 1; t + 1 < p.n; ++t) {
-        Point tri[3] = {p.v[0], p.v[t], p.v[t + 1]};
-        const double area = 0.5 * area2(tri[0], tri[1], tri[2]);
-        for (const auto& q : triangle_rule(2)) {
-          Point y = from_reference(tri, q.xi);
-          Point xf = to_reference(fc, y), xs = to_reference(ic, y);
-          const double uf = uh[fluid.triangles[kf][0]] * (1 - xf.x - xf.y) + uh[fluid.triangles[kf][1]] * xf.x +
-                            uh[fluid.triangles[kf][2]] * xf.y;
-          const double ls = lh[solid.triangles[ks][0]] * (1 - xs.x - xs.y) + lh[solid.triangles[ks][1]] * xs.x +
-                            lh[solid.triangles[ks][2]] * xs.y;
-          want += area * q.weight * uf * ls;  // det of a rotation is 1
-        }
-      }
-    }
-  }
+  const double c = std::cos(0.7), sn = std::sin(0.7);
+  const double want = static_cast<double>(brute_force(
+      fluid, solid, [&](Point p) { return Point{c * p.x - sn * p.y + 0.3, sn * p.x + c * p.y - 0.2}; },
+      [&](int ks, int kf, Point xs, Point xf) {  // det of a rotation is 1
+        return p1_value(fluid, uh, kf, xf) * p1_value(solid, lh, ks, xs);
+      }));
   EXPECT_NEAR(form(b, lh, uh), want, 1e-13 * std::fabs(want) + 1e-15);
 }
 
@@ -131,11 +151,7 @@ TEST(Coupling, KinkedDataUnderShearMatchesBruteForceWithGradients) {
   const double a[2][2] = {{1.1, 0.35}, {-0.2, 1.19}}, det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
   test::AffineMap map(solid, a[0][0], a[0][1], a[1][0], a[1][1], 0.05, -0.1);
   test::P1 vf(fluid), vs(solid);
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<double> uh(fluid.vertices.size()), lh(solid.vertices.size());
-  for (auto& v : uh) v = u(rng);
-  for (auto& v : lh) v = u(rng);
+  const std::vector<double> uh = random_values(fluid.vertices.size(), 11), lh = random_values(solid.vertices.size(), 111);
   auto gradient = [](const Point c[3], const double v[3]) {
     const Point e1 = c[1] - c[0], e2 = c[2] - c[0];
     const double d = cross(e1, e2), g1 = v[1] - v[0], g2 = v[2] - v[0];
@@ -147,33 +163,22 @@ TEST(Coupling, KinkedDataUnderShearMatchesBruteForceWithGradients) {
   CouplingReport rep;
   CsrMatrix b = assemble_coupling(fluid, vf, solid, vs, map, opt, &rep);
   EXPECT_LT(rep.outside_area, 1e-14 * rep.image_area);
-  long double want = 0;
-  for (int ks = 0; ks < solid.size(); ++ks) {
-    Point sc[3], ic[3];
-    solid.corners(ks, sc);
-    for (int i = 0; i < 3; ++i) ic[i] = {a[0][0] * sc[i].x + a[0][1] * sc[i].y + 0.05, a[1][0] * sc[i].x + a[1][1] * sc[i].y - 0.1};
-    const double ls[3] = {lh[solid.triangles[ks][0]], lh[solid.triangles[ks][1]], lh[solid.triangles[ks][2]]};
-    const Point gl = gradient(sc, ls);
-    for (int kf = 0; kf < fluid.size(); ++kf) {
-      Point fc[3];
-      fluid.corners(kf, fc);
-      const double uf[3] = {uh[fluid.triangles[kf][0]], uh[fluid.triangles[kf][1]], uh[fluid.triangles[kf][2]]};
-      const Point gu = gradient(fc, uf);
-      const Point gs{a[0][0] * gu.x + a[1][0] * gu.y, a[0][1] * gu.x + a[1][1] * gu.y};  // A^T grad u
-      Piece p = clip(ic, fc);
-      for (int t = 1; t + 1 < p.n; ++t) {
-        Point tri[3] = {p.v[0], p.v[t], p.v[t + 1]};
-        const double area = 0.5 * area2(tri[0], tri[1], tri[2]);
-        for (const auto& q : triangle_rule(2)) {
-          Point y = from_reference(tri, q.xi);
-          Point xf = to_reference(fc, y), xs = to_reference(ic, y);
-          const double uv = uf[0] * (1 - xf.x - xf.y) + uf[1] * xf.x + uf[2] * xf.y;
-          const double lv = ls[0] * (1 - xs.x - xs.y) + ls[1] * xs.x + ls[2] * xs.y;
-          want += area * q.weight / det * (opt.c2 * uv * lv + opt.c1 * (gl.x * gs.x + gl.y * gs.y));
-        }
-      }
-    }
-  }
+  auto nodal = [](const Mesh& mesh, const std::vector<double>& v, int k, double out[3], Point corner[3]) {
+    mesh.corners(k, corner);
+    for (int i = 0; i < 3; ++i) out[i] = v[mesh.triangles[k][i]];
+  };
+  const long double want = brute_force(
+      fluid, solid, [&](Point p) { return Point{a[0][0] * p.x + a[0][1] * p.y + 0.05, a[1][0] * p.x + a[1][1] * p.y - 0.1}; },
+      [&](int ks, int kf, Point xs, Point xf) {
+        double ls[3], uf[3];
+        Point sc[3], fc[3];
+        nodal(solid, lh, ks, ls, sc);
+        nodal(fluid, uh, kf, uf, fc);
+        const Point gl = gradient(sc, ls), gu = gradient(fc, uf);
+        const Point gs{a[0][0] * gu.x + a[1][0] * gu.y, a[0][1] * gu.x + a[1][1] * gu.y};  // A^T grad u
+        return (opt.c2 * p1_value(fluid, uh, kf, xf) * p1_value(solid, lh, ks, xs) +
+                opt.c1 * (gl.x * gs.x + gl.y * gs.y)) / det;
+      });
   EXPECT_NEAR(form(b, lh, uh), static_cast<double>(want), 1e-13 * std::fabs(static_cast<double>(want)));
 }
 
