@@ -1,6 +1,7 @@
 // A finite element space seen one triangle at a time. The FreeFEM adapter implements it with the element's
 // own basis evaluation, so the core works for any element without tables of its own.
 #pragma once
+#include <utility>
 #include <vector>
 
 #include "point.hpp"
@@ -23,6 +24,23 @@ class Basis {
   virtual void evaluate(int k, Point xi, double* out) const = 0;
   // The values alone, in the same layout (the derivative slots may be left unset). By default evaluate().
   virtual void values(int k, Point xi, double* out) const { evaluate(k, xi, out); }
+};
+
+// A basis seen through a renumbering of its triangles: triangle k here is triangle original[k] of base.
+class RenumberedBasis : public Basis {
+ public:
+  RenumberedBasis(const Basis& base, std::vector<int> original) : base_(base), original_(std::move(original)) {}
+  int components() const override { return base_.components(); }
+  int dof_count() const override { return base_.dof_count(); }
+  int local_dofs() const override { return base_.local_dofs(); }
+  void component_dofs(int c, int& first, int& last) const override { base_.component_dofs(c, first, last); }
+  void dofs(int k, int* global) const override { base_.dofs(original_[k], global); }
+  void evaluate(int k, Point xi, double* out) const override { base_.evaluate(original_[k], xi, out); }
+  void values(int k, Point xi, double* out) const override { base_.values(original_[k], xi, out); }
+
+ private:
+  const Basis& base_;
+  std::vector<int> original_;
 };
 
 // The polynomial degree of the basis on triangle k, found by probing: along three lines through the

@@ -596,7 +596,7 @@ void check_options(const Basis& fluid_space, const Basis& multiplier, const Coup
   if (opt.subdivide > 8) throw Error("subdivide above 8");
 }
 
-Mesh checked(Mesh mesh) {
+const Mesh& checked(const Mesh& mesh) {
   if (mesh.size() == 0) throw Error("empty fluid mesh");
   if (static_cast<int>(mesh.neighbours.size()) != mesh.size()) throw Error("fluid mesh adjacency not built");
   return mesh;
@@ -605,45 +605,12 @@ Mesh checked(Mesh mesh) {
 }  // namespace
 
 FluidSide::FluidSide(Mesh mesh, const Basis& space, const std::vector<int>& components)
-    : mesh_(checked(std::move(mesh))), space_(space), components_(components),
+    : original_(morton_order(checked(mesh))), mesh_(renumbered(mesh, original_)), space_(space, original_),
+      components_(components),
       degree_((check_components(space, components, "fluid", "fluid space"), polynomial_degree(space, components))), grid_(mesh_),
-      basis_(space, mesh_, degree_, components), dofs_(static_cast<size_t>(mesh_.size()) * space.local_dofs()) {
-  for (int k = 0; k < mesh_.size(); ++k) space.dofs(k, &dofs_[static_cast<size_t>(k) * space.local_dofs()]);
+      basis_(space_, mesh_, degree_, components), dofs_(static_cast<size_t>(mesh_.size()) * space.local_dofs()) {
+  for (int k = 0; k < mesh_.size(); ++k) space_.dofs(k, &dofs_[static_cast<size_t>(k) * space.local_dofs()]);
 }
-
-namespace {
-
-// The triangles of a mesh sorted by the Morton code of their centroids (16 bits per coordinate of the
-// bounding box, interleaved).
-std::vector<int> morton_order(const Mesh& mesh) {
-  Point lo{1e300, 1e300}, hi{-1e300, -1e300};
-  for (const Point& p : mesh.vertices) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
-  const double sx = hi.x > lo.x ? 65535 / (hi.x - lo.x) : 0, sy = hi.y > lo.y ? 65535 / (hi.y - lo.y) : 0;
-  auto spread = [](uint32_t v) {  // bit i to bit 2i
-    v = (v | (v << 8)) & 0x00FF00FFu;
-    v = (v | (v << 4)) & 0x0F0F0F0Fu;
-    v = (v | (v << 2)) & 0x33333333u;
-    return (v | (v << 1)) & 0x55555555u;
-  };
-  std::vector<std::pair<uint32_t, int>> keyed(mesh.size());
-  for (int k = 0; k < mesh.size(); ++k) {
-    Point c[3];
-    mesh.corners(k, c);
-    const double x = (c[0].x + c[1].x + c[2].x) / 3, y = (c[0].y + c[1].y + c[2].y) / 3;
-    const auto ix = static_cast<uint32_t>(std::min(65535.0, std::max(0.0, (x - lo.x) * sx)));
-    const auto iy = static_cast<uint32_t>(std::min(65535.0, std::max(0.0, (y - lo.y) * sy)));
-    keyed[k] = {spread(ix) | (spread(iy) << 1), k};
-  }
-  std::sort(keyed.begin(), keyed.end());
-  std::vector<int> order(mesh.size());
-  for (int k = 0; k < mesh.size(); ++k) order[k] = keyed[k].second;
-  return order;
-}
-
-}  // namespace
 
 SolidSide::SolidSide(Mesh mesh, const Basis& multiplier, const std::vector<int>& components)
     : mesh_(std::move(mesh)), space_(multiplier), components_(components),

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <tuple>
 
@@ -48,6 +49,62 @@ void Mesh::build_adjacency() {
     }
     e = f;
   }
+}
+
+std::vector<int> morton_order(const Mesh& mesh) {
+  Point lo{1e300, 1e300}, hi{-1e300, -1e300};
+  for (const Point& p : mesh.vertices) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  }
+  const double sx = hi.x > lo.x ? 65535 / (hi.x - lo.x) : 0, sy = hi.y > lo.y ? 65535 / (hi.y - lo.y) : 0;
+  auto spread = [](uint32_t v) {  // bit i to bit 2i
+    v = (v | (v << 8)) & 0x00FF00FFu;
+    v = (v | (v << 4)) & 0x0F0F0F0Fu;
+    v = (v | (v << 2)) & 0x33333333u;
+    return (v | (v << 1)) & 0x55555555u;
+  };
+  std::vector<std::pair<uint32_t, int>> keyed(mesh.size());
+  for (int k = 0; k < mesh.size(); ++k) {
+    Point c[3];
+    mesh.corners(k, c);
+    const double x = (c[0].x + c[1].x + c[2].x) / 3, y = (c[0].y + c[1].y + c[2].y) / 3;
+    const auto ix = static_cast<uint32_t>(std::min(65535.0, std::max(0.0, (x - lo.x) * sx)));
+    const auto iy = static_cast<uint32_t>(std::min(65535.0, std::max(0.0, (y - lo.y) * sy)));
+    keyed[k] = {spread(ix) | (spread(iy) << 1), k};
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<int> order(mesh.size());
+  for (int k = 0; k < mesh.size(); ++k) order[k] = keyed[k].second;
+  return order;
+}
+
+
+Mesh renumbered(const Mesh& mesh, const std::vector<int>& order) {
+  Mesh out;
+  const int nt = mesh.size();
+  std::vector<int> new_index(nt, -1), vertex_index(mesh.vertices.size(), -1);
+  for (int i = 0; i < nt; ++i) new_index[order[i]] = i;
+  out.triangles.resize(nt);
+  out.vertices.reserve(mesh.vertices.size());
+  for (int i = 0; i < nt; ++i)
+    for (int c = 0; c < 3; ++c) {
+      int& v = vertex_index[mesh.triangles[order[i]][c]];
+      if (v < 0) {
+        v = static_cast<int>(out.vertices.size());
+        out.vertices.push_back(mesh.vertices[mesh.triangles[order[i]][c]]);
+      }
+      out.triangles[i][c] = v;
+    }
+  if (!mesh.neighbours.empty()) {
+    out.neighbours.resize(nt);
+    for (int i = 0; i < nt; ++i)
+      for (int c = 0; c < 3; ++c) {
+        const int n = mesh.neighbours[order[i]][c];
+        out.neighbours[i][c] = n < 0 ? -1 : new_index[n];
+      }
+  }
+  return out;
 }
 
 }  // namespace dlmfsi

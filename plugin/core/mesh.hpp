@@ -26,6 +26,14 @@ struct Mesh {
   void build_adjacency();
 };
 
+// The triangles sorted by the Morton code of their centroids (16 bits per coordinate of the bounding box,
+// interleaved): neighbours in the plane come close in the order.
+std::vector<int> morton_order(const Mesh& mesh);
+
+// The mesh with triangle i = mesh's triangle order[i] and the vertices numbered in the order the triangles
+// first use them (the same points and neighbours, laid out along the order for the memory caches).
+Mesh renumbered(const Mesh& mesh, const std::vector<int>& order);
+
 // Point with barycentric-type reference coordinates (l1, l2) in triangle {p0, p1, p2}: p0 + l1 (p1 - p0) + l2 (p2 - p0).
 inline Point from_reference(const Point p[3], Point xi) {
   return {p[0].x + xi.x * (p[1].x - p[0].x) + xi.y * (p[2].x - p[0].x),

@@ -73,3 +73,27 @@ TEST(Search, PiecesOfAPartlyOutsideTriangleCoverOnlyTheInside) {
   const double y1 = 0.5 + (0.4 - 0.5) * (0.1 / 0.7), y2 = 0.5 + (0.9 - 0.5) * (0.1 / 0.6);
   EXPECT_NEAR(sum, 0.5 * 0.1 * (y2 - y1), 1e-15);
 }
+
+// The fluid side renumbers the mesh along a Morton curve: the same triangles (corners in the same local
+// order), vertices in order of first use, the neighbours rebuilt through the renumbering equal to the
+// adjacency of the renumbered mesh built from scratch.
+TEST(Search, RenumberedMeshKeepsTrianglesAndAdjacency) {
+  Mesh fluid = test::grid_mesh(9, 7, -1, 0, 3, 2, true);
+  const std::vector<int> order = morton_order(fluid);
+  ASSERT_EQ(static_cast<int>(order.size()), fluid.size());
+  std::vector<int> seen(fluid.size(), 0);
+  for (int k : order) ++seen[k];
+  for (int s : seen) ASSERT_EQ(s, 1);  // a permutation
+  const Mesh r = renumbered(fluid, order);
+  ASSERT_EQ(r.vertices.size(), fluid.vertices.size());
+  for (int i = 0; i < r.size(); ++i)
+    for (int c = 0; c < 3; ++c) ASSERT_TRUE(r.vertex(i, c) == fluid.vertex(order[i], c));
+  int next = 0;  // vertices numbered in order of first use
+  for (const auto& t : r.triangles)
+    for (int v : t)
+      if (v == next) ++next;
+      else ASSERT_LT(v, next);
+  Mesh rebuilt = r;
+  rebuilt.build_adjacency();
+  EXPECT_EQ(rebuilt.neighbours, r.neighbours);
+}
