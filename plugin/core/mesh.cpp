@@ -79,7 +79,6 @@ std::vector<int> morton_order(const Mesh& mesh) {
   return order;
 }
 
-
 Mesh renumbered(const Mesh& mesh, const std::vector<int>& order) {
   Mesh out;
   const int nt = mesh.size();
