@@ -37,6 +37,7 @@ class RenumberedBasis : public Basis {
   void dofs(int k, int* global) const override { base_.dofs(original_[k], global); }
   void evaluate(int k, Point xi, double* out) const override { base_.evaluate(original_[k], xi, out); }
   void values(int k, Point xi, double* out) const override { base_.values(original_[k], xi, out); }
+  const std::vector<int>& original() const { return original_; }
 
  private:
   const Basis& base_;

@@ -313,17 +313,17 @@ class Worker {
             const double *px = psi + sn, *py = psi + 2 * sn, *gx = phi + fn, *gy = phi + 2 * fn;
             for (size_t k = 0; k < n; ++k) sum += px[k] * gx[k] + py[k] * gy[k];
           }
-          add_to_block(p, a, b, sum);
+          pair_column(p, a)[b] += sum;
           if (twins)
-            for (int copy : pair_copies_[p]) add_to_block(copy, a, b, sum);
+            for (int copy : pair_copies_[p]) pair_column(copy, a)[b] += sum;
         }
       }
     }
   }
 
-  // block entry of pair p's a-th fluid dof and b-th multiplier dof
-  void add_to_block(size_t p, size_t a, size_t b, double value) {
-    block_[static_cast<size_t>(fcol_[frange_[p].first + static_cast<int>(a)]) * ns_ + srange_[p].first + b] += value;
+  // The block's entries of pair p's a-th fluid dof, from the pair's first multiplier dof on.
+  double* pair_column(size_t p, size_t a) {
+    return &block_[static_cast<size_t>(fcol_[frange_[p].first + static_cast<int>(a)]) * ns_ + srange_[p].first];
   }
 
   // Pair q repeats an earlier pair p when, function by function, both sides' functions are twins (or the same):
@@ -411,7 +411,7 @@ class Worker {
       const std::vector<int>&fi = pair_fluid_[p], &si = pair_solid_[p];
       for (size_t a = 0; a < fi.size(); ++a) {
         const int f = fi[a];
-        double* col = &block_[static_cast<size_t>(fcol_[frange_[p].first + static_cast<int>(a)]) * ns_ + srange_[p].first];
+        double* col = pair_column(p, a);
         for (size_t b = 0; b < si.size(); ++b) {
           const int g = si[b];
           double sum = fa[f] * sv[g] + fmx[f] * syx[g] + fmy[f] * syy[g];
@@ -605,7 +605,7 @@ const Mesh& checked(const Mesh& mesh) {
 }  // namespace
 
 FluidSide::FluidSide(Mesh mesh, const Basis& space, const std::vector<int>& components)
-    : original_(morton_order(checked(mesh))), mesh_(renumbered(mesh, original_)), space_(space, original_),
+    : space_(space, morton_order(checked(mesh))), mesh_(renumbered(mesh, space_.original())),
       components_(components),
       degree_((check_components(space, components, "fluid", "fluid space"), polynomial_degree(space, components))), grid_(mesh_),
       basis_(space_, mesh_, degree_, components), dofs_(static_cast<size_t>(mesh_.size()) * space.local_dofs()) {

@@ -50,11 +50,10 @@ class FluidSide {
   FluidSide(const FluidSide&) = delete;
   FluidSide& operator=(const FluidSide&) = delete;
   // The fluid mesh with its triangles along a Morton curve (vertices in order of first use), and the space
-  // on those triangles: triangle k here is the caller's triangle original(k). Nearby triangles lie close in
-  // memory, which keeps large fluid meshes in the caches.
+  // on those triangles: triangle k here is the caller's triangle space().original()[k]. Nearby triangles
+  // lie close in memory, which keeps large fluid meshes in the caches.
   const Mesh& mesh() const { return mesh_; }
-  const Basis& space() const { return space_; }
-  int original(int k) const { return original_[k]; }
+  const RenumberedBasis& space() const { return space_; }
   const std::vector<int>& components() const { return components_; }
   int degree() const { return degree_; }
   const FluidGrid& grid() const { return grid_; }
@@ -63,9 +62,8 @@ class FluidSide {
   const int* dofs(int k) const { return &dofs_[static_cast<size_t>(k) * space_.local_dofs()]; }
 
  private:
-  std::vector<int> original_;
+  RenumberedBasis space_;  // holds the order; before mesh_, which is built from it
   Mesh mesh_;
-  RenumberedBasis space_;
   std::vector<int> components_;
   int degree_;
   FluidGrid grid_;
