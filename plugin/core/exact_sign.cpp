@@ -40,9 +40,10 @@ inline std::int64_t mantissa(double x, int& e) {
 
 // The integer path: each product is an integer of at most 3 * 53 bits times 2^E; the positive and the
 // negative terms are added, shifted to the smallest E, into two wide unsigned accumulators, which are
-// then compared. Exponents of products of three doubles span less than 6300 bits: 104 limbs of 64 bits
-// hold every sum of up to 32 terms.
-int integer_sign(const double* f, int count, int arity) {
+// then compared, and the difference's leading 128 bits rounded to a double. Exponents of products of three
+// doubles span less than 6300 bits: 104 limbs of 64 bits hold every sum of up to 32 terms.
+double integer_sum(const double* f, int count, int arity, int& sign) {
+  sign = 0;
   constexpr int kLimbs = 104;
   struct Term {
     bool negative;
@@ -96,14 +97,33 @@ int integer_sign(const double* f, int count, int arity) {
       carry = c1 | (acc[i] < s ? 1 : 0);
     }
   }
-  for (int i = kLimbs - 1; i >= 0; --i)
-    if (pos[i] != neg[i]) return pos[i] > neg[i] ? 1 : -1;
-  return 0;
+  int top = kLimbs - 1;
+  while (top >= 0 && pos[top] == neg[top]) --top;
+  if (top < 0) return 0;
+  const bool negative = neg[top] > pos[top];
+  sign = negative ? -1 : 1;  // exact, even where the value below underflows
+  const std::uint64_t* big = negative ? neg : pos;
+  const std::uint64_t* small = negative ? pos : neg;
+  // big - small, limbs 0 .. top; the leading non-zero limbs give the value
+  std::uint64_t diff[kLimbs];
+  std::uint64_t borrow = 0;
+  for (int i = 0; i <= top; ++i) {
+    const std::uint64_t d = big[i] - small[i];
+    const std::uint64_t b1 = big[i] < small[i] ? 1 : 0;
+    diff[i] = d - borrow;
+    borrow = b1 | (d < borrow ? 1 : 0);
+  }
+  while (top > 0 && diff[top] == 0) --top;
+  double v = static_cast<double>(diff[top]);
+  if (top > 0) v += std::ldexp(static_cast<double>(diff[top - 1]), -64);
+  // (the limbs below move the value by less than 2^-64 relative)
+  const double value = std::ldexp(v, 64 * top + emin);
+  return negative ? -value : value;
 }
 
-}  // namespace
-
-int exact_sign_of_sum(const double* f, int count, int arity) {
+// The exact sum as a non-overlapping expansion h[0..n) (increasing magnitude); false when a product
+// leaves the range where the expansion is exact (the integer path must decide).
+bool expansion(const double* f, int count, int arity, double* h, int& n) {
   // The floating-point expansion is exact when the rounding error of every partial product is a double
   // and nothing overflows: with |x| < 2^ex, the error of x y is a multiple of 2^(ex + ey - 106), that of
   // (x y) z (both parts) a multiple of 2^(ex + ey + ez - 159); both at least 2^-1074, and the products
@@ -113,17 +133,15 @@ int exact_sign_of_sum(const double* f, int count, int arity) {
     bool zero = false;
     for (int i = 0; i < arity; ++i) {
       const double x = f[k * arity + i];
-      if (!std::isfinite(x)) return 0;
       if (x == 0) zero = true;
       int e;
       std::frexp(x, &e);
       total += e;
       const int floor = i == 1 ? -968 : -915;
-      if (!zero && i >= 1 && (total < floor || total > 1000)) return integer_sign(f, count, arity);
+      if (!zero && i >= 1 && (total < floor || total > 1000)) return false;
     }
   }
-  double h[4 * 32];
-  int n = 0;
+  n = 0;
   for (int k = 0; k < count; ++k) {
     const double* x = f + k * arity;
     const double p = x[0] * x[1];
@@ -147,9 +165,44 @@ int exact_sign_of_sum(const double* f, int count, int arity) {
       if (ee != 0) n = grow_expansion(h, n, ee);
     }
   }
+  return true;
+}
+
+bool all_finite(const double* f, int count, int arity) {
+  for (int k = 0; k < count * arity; ++k)
+    if (!std::isfinite(f[k])) return false;
+  return true;
+}
+
+}  // namespace
+
+int exact_sign_of_sum(const double* f, int count, int arity) {
+  if (!all_finite(f, count, arity)) return 0;
+  double h[4 * 32];
+  int n;
+  if (!expansion(f, count, arity, h, n)) {
+    int sign;
+    integer_sum(f, count, arity, sign);
+    return sign;
+  }
   // In a non-overlapping expansion the last (largest) component carries the sign.
   if (n == 0) return 0;
   return h[n - 1] > 0 ? 1 : -1;
+}
+
+double exact_sum(const double* f, int count, int arity) {
+  if (!all_finite(f, count, arity)) return 0;
+  double h[4 * 32];
+  int n;
+  if (!expansion(f, count, arity, h, n)) {
+    int sign;
+    return integer_sum(f, count, arity, sign);
+  }
+  // Adding the components from the smallest: each is below half an ulp of the next, so the sum is the
+  // exact one to within a few ulps.
+  double s = 0;
+  for (int i = 0; i < n; ++i) s += h[i];
+  return s;
 }
 
 }  // namespace dlmfsi

@@ -11,4 +11,8 @@ namespace dlmfsi {
 // finite (outside the contract; nothing undefined happens).
 int exact_sign_of_sum(const double* f, int count, int arity);
 
+// The same sum's value: the exact sum rounded, with a relative error of a few units in the last place
+// (sign exact, 0 exactly when the sum is 0). For constructions whose floating-point evaluation cancels.
+double exact_sum(const double* f, int count, int arity);
+
 }  // namespace dlmfsi

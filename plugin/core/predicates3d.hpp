@@ -23,12 +23,11 @@ inline int orient3d(Point3 a, Point3 b, Point3 c, Point3 d);
 // The same determinant evaluated exactly, without the floating-point filter.
 int orient3d_exact(Point3 a, Point3 b, Point3 c, Point3 d);
 
-// The filter: the sign of det [u, v, w] from the rounded differences u = b - a, v = c - a, w = d - a when
-// the rounding error cannot change it, 0 when the exact evaluation must decide. The bound is Shewchuk's
-// o3derrboundA = (7 + 56 eps) eps (eps = 2^-53) times the permanent, plus 2^-1068 (1 + max |u, v, w|) for
-// products that underflow (a product of two differences below 2^-1022 loses at most 2^-1075 before it is
-// multiplied by the third); on overflow (inf, NaN) nothing is decided.
-inline int orient3d_filter(Point3 a, Point3 b, Point3 c, Point3 d) {
+// The determinant det [b - a, c - a, d - a] in floating point, and a bound on its error: Shewchuk's
+// o3derrboundA = (7 + 56 eps) eps (eps = 2^-53) times the permanent, plus 2^-1068 (1 + max |b - a, c - a,
+// d - a|) for products that underflow (a product of two differences below 2^-1022 loses at most 2^-1075
+// before it is multiplied by the third). On overflow the bound is inf or NaN.
+inline double orient3d_estimate(Point3 a, Point3 b, Point3 c, Point3 d, double& bound) {
   const Point3 u = b - a, v = c - a, w = d - a;
   const double t1 = v.y * w.z, t2 = v.z * w.y, t3 = v.z * w.x, t4 = v.x * w.z, t5 = v.x * w.y, t6 = v.y * w.x;
   const double det = u.x * (t1 - t2) + u.y * (t3 - t4) + u.z * (t5 - t6);
@@ -37,11 +36,34 @@ inline int orient3d_filter(Point3 a, Point3 b, Point3 c, Point3 d) {
                            std::fabs(u.z) * (std::fabs(t5) + std::fabs(t6));
   const double largest = std::max({std::fabs(u.x), std::fabs(u.y), std::fabs(u.z), std::fabs(v.x), std::fabs(v.y),
                                    std::fabs(v.z), std::fabs(w.x), std::fabs(w.y), std::fabs(w.z)});
-  const double bound = 7.7715611723761e-16 * permanent + 0x1p-1068 * (1 + largest);
+  bound = 7.7715611723761e-16 * permanent + 0x1p-1068 * (1 + largest);
+  return det;
+}
+
+// The filter: the sign of the estimate when its error bound cannot change it, 0 when the exact evaluation
+// must decide (also on overflow: inf, NaN).
+inline int orient3d_filter(Point3 a, Point3 b, Point3 c, Point3 d) {
+  double bound;
+  const double det = orient3d_estimate(a, b, c, d, bound);
   if (det > bound) return 1;
   if (-det > bound) return -1;
   return 0;
 }
+
+// det [b - a, c - a, d - a] exactly, rounded to a double (a few ulps; 0 exactly when it is 0, possibly
+// underflowing for coordinates below about 1e-100): for constructions whose floating-point evaluation
+// cancels.
+double orient3d_value(Point3 a, Point3 b, Point3 c, Point3 d);
+
+// The 2D counterparts for points of a plane seen in a coordinate projection: det [b - a, c - a] with the
+// bound (3 + 16 eps) eps times the permanent plus 2^-1070 (1 + max |difference|), and its exact value.
+inline double orient2d_estimate(Point a, Point b, Point c, double& bound) {
+  const double l = (b.x - a.x) * (c.y - a.y), r = (b.y - a.y) * (c.x - a.x);
+  const double largest = std::max({std::fabs(b.x - a.x), std::fabs(b.y - a.y), std::fabs(c.x - a.x), std::fabs(c.y - a.y)});
+  bound = 3.3306690738754716e-16 * (std::fabs(l) + std::fabs(r)) + 0x1p-1070 * (1 + largest);
+  return l - r;
+}
+double orient2d_value(Point a, Point b, Point c);
 
 inline int orient3d(Point3 a, Point3 b, Point3 c, Point3 d) {
   const int s = orient3d_filter(a, b, c, d);

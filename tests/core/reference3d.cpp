@@ -32,7 +32,7 @@ Polyhedron clip(const Polyhedron& in, const Q3& n, const mpq_class& c) {
   Polyhedron out;
   std::vector<std::pair<Q3, Q3>> cut_edges;  // crossing segments on the cut plane, one per face
   bool face_on_plane = false;
-  auto value = [&](const Q3& p) { return n.x * p.x + n.y * p.y + n.z * p.z - c; };
+  auto value = [&](const Q3& p) -> mpq_class { return n.x * p.x + n.y * p.y + n.z * p.z - c; };
   for (const Polygon& face : in) {
     Polygon kept;
     std::vector<Q3> on_plane;
@@ -105,7 +105,8 @@ double exact_tet_volume(Point3 a, Point3 b, Point3 c, Point3 d) {
   return v.get_d();
 }
 
-double exact_intersection_volume(const Point3 a[4], const Point3 b[4]) {
+double exact_intersection_volume(const Point3 a[4], const Point3 b[4], bool* positive) {
+  if (positive) *positive = false;
   Q3 qa[4], qb[4];
   for (int i = 0; i < 4; ++i) {
     qa[i] = q(a[i]);
@@ -131,6 +132,7 @@ double exact_intersection_volume(const Point3 a[4], const Point3 b[4]) {
     }
   }
   const mpq_class v = volume(p);
+  if (positive) *positive = sgn(v) > 0;
   return v.get_d();
 }
 

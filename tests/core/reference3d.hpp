@@ -15,6 +15,7 @@ double exact_tet_volume(Point3 a, Point3 b, Point3 c, Point3 d);
 // Volume of the intersection of the closed tetrahedra a and b (either orientation), computed exactly:
 // a is clipped by the four half-spaces of b in rational arithmetic (each face a polygon of exact
 // rational points), and the volume of the exact polyhedron is rounded once to double.
-double exact_intersection_volume(const Point3 a[4], const Point3 b[4]);
+// When positive is given, it tells whether the exact volume is positive (its rounding may underflow to 0).
+double exact_intersection_volume(const Point3 a[4], const Point3 b[4], bool* positive = nullptr);
 
 }  // namespace dlmfsi::ref
