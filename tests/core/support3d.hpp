@@ -97,3 +97,75 @@ inline std::string piece_shape(const Piece3& p, const Tet& a, const Tet& b, doub
 }
 
 }  // namespace dlmfsi::test3d
+
+#include <random>
+
+#include "mesh3d.hpp"
+
+namespace dlmfsi::test3d {
+
+// n x m x l grid of cubes on the box [o, o + size], each cube split into the six Kuhn tetrahedra (the
+// same diagonal in every cube: a conforming mesh); interior vertices moved at random by jitter times the
+// cell size when jitter > 0.
+inline Mesh3 box_mesh(int n, int m, int l, Point3 o, Point3 size, double jitter = 0, unsigned seed = 1) {
+  Mesh3 mesh;
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const Point3 h{size.x / n, size.y / m, size.z / l};
+  for (int k = 0; k <= l; ++k)
+    for (int j = 0; j <= m; ++j)
+      for (int i = 0; i <= n; ++i) {
+        Point3 p{o.x + size.x * i / n, o.y + size.y * j / m, o.z + size.z * k / l};
+        if (jitter > 0 && i > 0 && i < n && j > 0 && j < m && k > 0 && k < l)
+          p = p + Point3{jitter * h.x * u(rng), jitter * h.y * u(rng), jitter * h.z * u(rng)};
+        mesh.vertices.push_back(p);
+      }
+  auto id = [&](int i, int j, int k) { return (k * (m + 1) + j) * (n + 1) + i; };
+  static const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (int k = 0; k < l; ++k)
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < n; ++i)
+        for (const auto& p : perms) {
+          int c[3] = {i, j, k};
+          std::array<int, 4> t;
+          t[0] = id(c[0], c[1], c[2]);
+          for (int s = 0; s < 3; ++s) {
+            ++c[p[s]];
+            t[s + 1] = id(c[0], c[1], c[2]);
+          }
+          if (orient3d(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], mesh.vertices[t[3]]) < 0)
+            std::swap(t[2], t[3]);
+          mesh.tetrahedra.push_back(t);
+        }
+  mesh.build_adjacency();
+  return mesh;
+}
+
+// The mesh moved by x -> centre + R (x - centre) + shift (R a rotation about axis by angle, Rodrigues);
+// angle 0 keeps the vertices bit for bit (then only the shift is applied, exactly for dyadic values).
+inline Mesh3 moved(Mesh3 mesh, Point3 axis, double angle, Point3 centre, Point3 shift) {
+  const double len = std::sqrt(dot(axis, axis));
+  axis = (1 / len) * axis;
+  const double c = std::cos(angle), s = std::sin(angle);
+  for (Point3& p : mesh.vertices) {
+    if (angle != 0) {
+      const Point3 d = p - centre;
+      p = centre + (c * d + s * cross(axis, d) + ((1 - c) * dot(axis, d)) * axis);
+    }
+    p = p + shift;
+  }
+  mesh.build_adjacency();
+  return mesh;
+}
+
+// Rotation by a quarter turn about the z axis through centre, exact for dyadic coordinates.
+inline Mesh3 quarter_turn(Mesh3 mesh, Point3 centre) {
+  for (Point3& p : mesh.vertices) {
+    const Point3 d = p - centre;
+    p = centre + Point3{-d.y, d.x, d.z};
+  }
+  mesh.build_adjacency();
+  return mesh;
+}
+
+}  // namespace dlmfsi::test3d
