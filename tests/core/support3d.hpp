@@ -80,8 +80,13 @@ inline std::string piece_shape(const Piece3& p, const Tet& a, const Tet& b, doub
   auto distance = [&](const Tet& t, int face, Point3 v) {
     Point3 u[4] = {down(t[0]), down(t[1]), down(t[2]), down(t[3])};
     const Point3 q = u[(face + 1) % 4], r = u[(face + 2) % 4], s = u[(face + 3) % 4];
-    // the exact volume over the area: thin faces of slivers have normals far too inexact for n . (v - q)
-    Point3 n = cross(r - q, s - q);
+    // the exact volume over the area: thin faces of slivers have normals far too inexact for n . (v - q);
+    // the area from the two shorter edges (the cross product of the long ones cancels)
+    const Point3 edge[3] = {r - q, s - r, q - s};
+    int longest = 0;
+    for (int i = 1; i < 3; ++i)
+      if (dot(edge[i], edge[i]) > dot(edge[longest], edge[longest])) longest = i;
+    Point3 n = cross(edge[(longest + 1) % 3], edge[(longest + 2) % 3]);
     const double len = std::sqrt(dot(n, n));
     const double d = 6 * ref::exact_tet_volume(q, r, s, down(v)) / len;
     return std::ldexp(ref::exact_orientation3d(q, r, s, u[face]) > 0 ? d : -d, e);
