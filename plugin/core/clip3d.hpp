@@ -26,12 +26,17 @@ struct Piece3 {
   // the faces that do not contain vertex 0. The tetrahedra tile the piece; they are not oriented.
   template <class F>
   void for_each_tetrahedron(F&& f) const {
+    for_each_tetrahedron_index([&](int i, int j, int k, int l) { f(v[i], v[j], v[k], v[l]); });
+  }
+  // The same tetrahedra as vertex indices (the first is always 0).
+  template <class F>
+  void for_each_tetrahedron_index(F&& f) const {
     for (int k = 0; k < faces; ++k) {
       const int s = face_start[k], e = face_start[k + 1];
       bool has_apex = false;
       for (int i = s; i < e; ++i) has_apex = has_apex || face_index[i] == 0;
       if (has_apex) continue;
-      for (int i = s + 1; i + 1 < e; ++i) f(v[0], v[face_index[s]], v[face_index[i]], v[face_index[i + 1]]);
+      for (int i = s + 1; i + 1 < e; ++i) f(0, face_index[s], face_index[i], face_index[i + 1]);
     }
   }
   // Sum of the pulling triangulation's |volumes| (each tetrahedron's is >= 0 exactly; round-off only).

@@ -174,3 +174,196 @@ inline Mesh3 quarter_turn(Mesh3 mesh, Point3 centre) {
 }
 
 }  // namespace dlmfsi::test3d
+
+#include <map>
+
+#include "basis.hpp"
+#include "map3d.hpp"
+
+namespace dlmfsi::test3d {
+
+// d xi / d x of tetrahedron k (rows: the gradients of the reference coordinates), independent of the core.
+inline void reference_gradients(const Mesh3& m, int k, Point3 g[3]) {
+  Point3 p[4];
+  m.corners(k, p);
+  const Point3 e1 = p[1] - p[0], e2 = p[2] - p[0], e3 = p[3] - p[0];
+  const double det = dot(e1, cross(e2, e3));
+  g[0] = (1 / det) * cross(e2, e3);
+  g[1] = (1 / det) * cross(e3, e1);
+  g[2] = (1 / det) * cross(e1, e2);
+}
+
+// Barycentric coordinates at reference point xi and their physical gradients.
+inline void barycentric(const Mesh3& m, int k, Point3 xi, double l[4], Point3 g[4]) {
+  Point3 r[3];
+  reference_gradients(m, k, r);
+  l[0] = 1 - xi.x - xi.y - xi.z;
+  l[1] = xi.x;
+  l[2] = xi.y;
+  l[3] = xi.z;
+  g[1] = r[0];
+  g[2] = r[1];
+  g[3] = r[2];
+  g[0] = -1.0 * (r[0] + r[1] + r[2]);
+}
+
+// Scalar P1 Lagrange on a tetrahedral mesh (dofs: vertices), written independently of the adapter.
+class P1Tet : public Basis3 {
+ public:
+  explicit P1Tet(const Mesh3& m) : m_(m) {}
+  int components() const override { return 1; }
+  int dof_count() const override { return static_cast<int>(m_.vertices.size()); }
+  int local_dofs() const override { return 4; }
+  void component_dofs(int, int& f, int& l) const override { f = 0; l = 4; }
+  void dofs(int k, int* g) const override {
+    for (int i = 0; i < 4; ++i) g[i] = m_.tetrahedra[k][i];
+  }
+  void evaluate(int k, Point3 xi, double* out) const override {
+    double l[4];
+    Point3 g[4];
+    barycentric(m_, k, xi, l, g);
+    for (int i = 0; i < 4; ++i) {
+      out[4 * i] = l[i];
+      out[4 * i + 1] = g[i].x;
+      out[4 * i + 2] = g[i].y;
+      out[4 * i + 3] = g[i].z;
+    }
+  }
+  Point3 node(int dof) const { return m_.vertices[dof]; }
+
+ private:
+  const Mesh3& m_;
+};
+
+// Scalar P2 Lagrange: vertex dofs lambda_i (2 lambda_i - 1), then edge dofs 4 lambda_i lambda_j on the
+// edges (0,1), (0,2), (0,3), (1,2), (1,3), (2,3); global dofs: the vertices, then the mesh's edges.
+class P2Tet : public Basis3 {
+ public:
+  explicit P2Tet(const Mesh3& m) : m_(m) {
+    static const int e[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+    std::map<std::pair<int, int>, int> id;
+    edge_dofs_.resize(m.tetrahedra.size());
+    for (size_t k = 0; k < m.tetrahedra.size(); ++k)
+      for (int i = 0; i < 6; ++i) {
+        int a = m.tetrahedra[k][e[i][0]], b = m.tetrahedra[k][e[i][1]];
+        if (a > b) std::swap(a, b);
+        auto it = id.find({a, b});
+        if (it == id.end()) {
+          it = id.insert({{a, b}, static_cast<int>(m.vertices.size() + nodes_.size())}).first;
+          nodes_.push_back(0.5 * (m.vertices[a] + m.vertices[b]));
+        }
+        edge_dofs_[k][i] = it->second;
+      }
+  }
+  int components() const override { return 1; }
+  int dof_count() const override { return static_cast<int>(m_.vertices.size() + nodes_.size()); }
+  int local_dofs() const override { return 10; }
+  void component_dofs(int, int& f, int& l) const override { f = 0; l = 10; }
+  void dofs(int k, int* g) const override {
+    for (int i = 0; i < 4; ++i) g[i] = m_.tetrahedra[k][i];
+    for (int i = 0; i < 6; ++i) g[4 + i] = edge_dofs_[k][i];
+  }
+  void evaluate(int k, Point3 xi, double* out) const override {
+    static const int e[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+    double l[4];
+    Point3 g[4];
+    barycentric(m_, k, xi, l, g);
+    auto put = [out](int df, double v, Point3 d) {
+      out[4 * df] = v;
+      out[4 * df + 1] = d.x;
+      out[4 * df + 2] = d.y;
+      out[4 * df + 3] = d.z;
+    };
+    for (int i = 0; i < 4; ++i) put(i, l[i] * (2 * l[i] - 1), (4 * l[i] - 1) * g[i]);
+    for (int i = 0; i < 6; ++i) {
+      const int a = e[i][0], b = e[i][1];
+      put(4 + i, 4 * l[a] * l[b], 4 * l[b] * g[a] + 4 * l[a] * g[b]);
+    }
+  }
+  Point3 node(int dof) const {
+    const int nv = static_cast<int>(m_.vertices.size());
+    return dof < nv ? m_.vertices[dof] : nodes_[dof - nv];
+  }
+
+ private:
+  const Mesh3& m_;
+  std::vector<std::array<int, 6>> edge_dofs_;
+  std::vector<Point3> nodes_;
+};
+
+// Three P1 components (a velocity-like vector space): component c on local dofs [4c, 4c + 4), global dof
+// c * vertices + vertex.
+class VectorP1Tet : public Basis3 {
+ public:
+  explicit VectorP1Tet(const Mesh3& m) : m_(m), scalar_(m) {}
+  int components() const override { return 3; }
+  int dof_count() const override { return 3 * static_cast<int>(m_.vertices.size()); }
+  int local_dofs() const override { return 12; }
+  void component_dofs(int c, int& f, int& l) const override {
+    f = 4 * c;
+    l = 4 * c + 4;
+  }
+  void dofs(int k, int* g) const override {
+    const int nv = static_cast<int>(m_.vertices.size());
+    for (int c = 0; c < 3; ++c)
+      for (int i = 0; i < 4; ++i) g[4 * c + i] = c * nv + m_.tetrahedra[k][i];
+  }
+  void evaluate(int k, Point3 xi, double* out) const override {
+    double s[16];
+    scalar_.evaluate(k, xi, s);
+    std::fill(out, out + 12 * 3 * 4, 0.0);
+    for (int c = 0; c < 3; ++c)
+      for (int i = 0; i < 4; ++i)
+        for (int d = 0; d < 4; ++d) out[((4 * c + i) * 3 + c) * 4 + d] = s[4 * i + d];
+  }
+
+ private:
+  const Mesh3& m_;
+  P1Tet scalar_;
+};
+
+// X(s) = A s + b with s the solid's coordinates.
+class AffineMap3 : public SolidMap3 {
+ public:
+  AffineMap3(const Mesh3& solid, const double a[3][3], Point3 b) : solid_(solid), b_(b) {
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) a_[i][j] = a[i][j];
+  }
+  Point3 apply(Point3 s) const {
+    return Point3{a_[0][0] * s.x + a_[0][1] * s.y + a_[0][2] * s.z, a_[1][0] * s.x + a_[1][1] * s.y + a_[1][2] * s.z,
+                  a_[2][0] * s.x + a_[2][1] * s.y + a_[2][2] * s.z} +
+           b_;
+  }
+  MapValue3 evaluate(int k, Point3 xi) const override {
+    Point3 p[4];
+    solid_.corners(k, p);
+    MapValue3 v;
+    v.x = apply(from_reference(p, xi));
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) v.jac[i][j] = a_[i][j];
+    return v;
+  }
+  int degree() const override { return 1; }
+
+ private:
+  const Mesh3& solid_;
+  double a_[3][3];
+  Point3 b_;
+};
+
+// A rotation by angle about axis (Rodrigues), times a shear that keeps volumes when shear_volume.
+inline void rotation(Point3 axis, double angle, double r[3][3]) {
+  const double len = std::sqrt(dot(axis, axis));
+  axis = (1 / len) * axis;
+  const double c = std::cos(angle), s = std::sin(angle), u[3] = {axis.x, axis.y, axis.z};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) r[i][j] = (1 - c) * u[i] * u[j] + (i == j ? c : 0);
+  r[0][1] -= s * u[2];
+  r[0][2] += s * u[1];
+  r[1][0] += s * u[2];
+  r[1][2] -= s * u[0];
+  r[2][0] -= s * u[1];
+  r[2][1] += s * u[0];
+}
+
+}  // namespace dlmfsi::test3d
