@@ -320,7 +320,7 @@ class NotTwoD : public E_F0mps {
   static ArrayOfaType typeargs() { return ArrayOfaType(atype<SpaceF>(), atype<SpaceS>(), atype<E_Array>()); }
   static E_F0* f(const basicAC_F0& args) { return new NotTwoD(args); }
   AnyType operator()(Stack) const {
-    ExecError("dlmfsi: the fluid and multiplier spaces must be 2D (fespace on a 2D mesh)");
+    ExecError("dlmfsi: the fluid and multiplier spaces must both be 2D (mesh) or both 3D (mesh3)");
     return Nothing;
   }
 };
@@ -328,10 +328,11 @@ class NotTwoD : public E_F0mps {
 }  // namespace
 
 void dlmfsi_register_supermesh();  // plugin/freefem/supermesh.cpp
+void dlmfsi_register_3d();         // plugin/freefem/dlmfsi3d.cpp
 
 static void Load_Init() {
   Global.Add("dlmfsi", "(", new OneOperatorCode<DlmfsiOp>);
-  Global.Add("dlmfsi", "(", new OneOperatorCode<NotTwoD<pfes3*, pfes3*> >);
+  dlmfsi_register_3d();
   Global.Add("dlmfsi", "(", new OneOperatorCode<NotTwoD<pfes*, pfes3*> >);
   Global.Add("dlmfsi", "(", new OneOperatorCode<NotTwoD<pfes3*, pfes*> >);
   Global.Add("dlmfsi", "(", new OneOperatorCode<NotTwoD<pfesS*, pfesS*> >);
