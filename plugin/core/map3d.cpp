@@ -275,12 +275,31 @@ void MappedTet::classify() {
   affine = true;
   nonlinearity = 0;
   auto deviation = [&](Point3 xi) {
-    const Point3 x = at(xi).x;
+    Point3 x, d[3];
+    if (degree_ >= 1) {
+      polynomial(xi, x, d);
+    } else {  // dX/dxi_i = dX/ds e_i
+      const MapValue3 v = map_->evaluate(k, xi);
+      x = v.x;
+      const Point3 e[3] = {solid[1] - solid[0], solid[2] - solid[0], solid[3] - solid[0]};
+      for (int i = 0; i < 3; ++i)
+        d[i] = {v.jac[0][0] * e[i].x + v.jac[0][1] * e[i].y + v.jac[0][2] * e[i].z,
+                v.jac[1][0] * e[i].x + v.jac[1][1] * e[i].y + v.jac[1][2] * e[i].z,
+                v.jac[2][0] * e[i].x + v.jac[2][1] * e[i].y + v.jac[2][2] * e[i].z};
+    }
     if (!finite(x)) throw Error("the map is NaN or Inf inside " + name(k));
     const Point3 line = from_reference(image, xi);
     const double dev = std::fabs(x.x - line.x) + std::fabs(x.y - line.y) + std::fabs(x.z - line.z);
-    nonlinearity = std::max(nonlinearity, dev / scale);
     if (dev > tol) affine = false;
+    // G^-1 dX/dxi - I, G^-1 = image_inv_ (rows: d xi / d y of the affine interpolant)
+    for (int r = 0; r < 3; ++r) {
+      double row = 0;
+      for (int c = 0; c < 3; ++c) {
+        const double m = image_inv_[r][0] * d[c].x + image_inv_[r][1] * d[c].y + image_inv_[r][2] * d[c].z;
+        row += std::fabs(m - (r == c ? 1 : 0));
+      }
+      nonlinearity = std::max(nonlinearity, row);
+    }
     return x;
   };
   for (int f = 0; f < 4; ++f)

@@ -77,7 +77,9 @@ class MappedTet {
   Point3 image[4];   // X at the corners
   bool affine = false;  // X agrees with the affine interpolant of the corner images (to round-off)
   bool planar = false;  // the image's faces are planar (e.g. P1b: the bubble vanishes on faces)
-  double nonlinearity = 0;  // max |X - affine interpolant of the corners| / image size, at sample points
+  // max |G^-1 dX/dxi - I| (G = dX/dxi of the affine interpolant of the corners, max row sum) at sample points:
+  // how far the map's jacobian strays from the affine one, which sets the quadrature degree needed
+  double nonlinearity = 0;
   MapValue3 affine_value;   // for affine tetrahedra: X at the first corner and the constant jacobian
   double affine_det = 0;    // det of that jacobian (> 0)
 
