@@ -17,13 +17,6 @@ constexpr int kEdgeIndex[4][4] = {{-1, 0, 1, 2}, {0, -1, 3, 4}, {1, 3, -1, 5}, {
 // Face i of a tetrahedron (opposite vertex i): its vertices in increasing order.
 constexpr int kFace[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
 
-// The side of p with respect to face j of the positively oriented t: +1 on t's side (that of t[j]).
-inline int side(const Point3 t[4], int j, Point3 p) {
-  Point3 u[4] = {t[0], t[1], t[2], t[3]};
-  u[j] = p;
-  return orient3d(u[0], u[1], u[2], u[3]);
-}
-
 // The planes (bits) of a tetrahedron's faces that contain its vertex i, or its edge (k, l).
 inline unsigned faces_at_vertex(int i) { return 0xFu & ~(1u << i); }
 inline unsigned faces_at_edge(int k, int l) { return 0xFu & ~(1u << k) & ~(1u << l); }
@@ -221,7 +214,15 @@ Piece3 clip(const Point3 a[4], const Point3 b[4]) {
 }
 
 Piece3 clip(const Point3 a[4], const Point3 b[4], unsigned& beyond) {
+  TetFaces a_faces;
+  a_faces.set(a);
+  return clip(a, a_faces, b, beyond);
+}
+
+Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsigned& beyond) {
   beyond = 0;
+  TetFaces b_faces;
+  b_faces.set(b);
   auto normal = [&](int plane) { return plane < 4 ? face_normal(a, plane) : face_normal(b, plane - 4); };
   Candidate c[32];
   int n = 0;
@@ -234,7 +235,7 @@ Piece3 clip(const Point3 a[4], const Point3 b[4], unsigned& beyond) {
   for (int j = 0; j < 4; ++j) {
     bool separates = true;
     for (int i = 0; i < 4; ++i) {
-      sb[i][j] = side(b, j, a[i]);
+      sb[i][j] = b_faces.side(j, a[i]);
       if (sb[i][j] > 0) separates = false;
       if (sb[i][j] < 0) beyond |= 1u << j;
     }
@@ -245,7 +246,7 @@ Piece3 clip(const Point3 a[4], const Point3 b[4], unsigned& beyond) {
   for (int i = 0; i < 4; ++i) {
     bool separates = true;
     for (int j = 0; j < 4; ++j) {
-      sa[j][i] = side(a, i, b[j]);
+      sa[j][i] = a_faces.side(i, b[j]);
       if (sa[j][i] > 0) separates = false;
       if (sa[j][i] < 0) b_inside = false;
     }

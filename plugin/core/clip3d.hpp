@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "point3.hpp"
+#include "predicates3d.hpp"
 
 namespace dlmfsi {
 
@@ -47,6 +48,21 @@ struct Piece3 {
   }
 };
 
+// The four face planes of a positively oriented tetrahedron t, each oriented so that side(j, x) > 0 on t's
+// side of face j (opposite t[j]): side(j, x) = orient3d of t with t[j] replaced by x, exactly. Formed once
+// for a tetrahedron clipped against many others.
+struct TetFaces {
+  PlaneSide face[4];
+  void set(const Point3 t[4]) {
+    // orient3d(t with t[j] <- x) = (-1)^(3 - j) orient3d(t_k, t_l, t_m, x) for the others k < l < m
+    face[0].set(t[1], t[3], t[2]);
+    face[1].set(t[0], t[2], t[3]);
+    face[2].set(t[0], t[3], t[1]);
+    face[3].set(t[0], t[1], t[2]);
+  }
+  int side(int j, Point3 x) const { return face[j].sign(x); }
+};
+
 // Intersection of the closed, positively oriented tetrahedra a and b (orient3d(t[0], t[1], t[2], t[3]) > 0).
 //
 // Every decision is an exact orient3d sign on the input coordinates (predicates3d.hpp):
@@ -73,6 +89,10 @@ Piece3 clip(const Point3 a[4], const Point3 b[4]);
 // meet a tetrahedron on the other side of that face. Set whenever the piece is not empty. When a lies in
 // closed b (beyond == 0) the piece is a itself, and when b lies in closed a it is b.
 Piece3 clip(const Point3 a[4], const Point3 b[4], unsigned& beyond);
+
+// The same with a's face planes formed by the caller (a = the mapped solid tetrahedron, clipped against
+// every fluid tetrahedron it meets).
+Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsigned& beyond);
 
 // The point where segment [p, q] crosses the plane through x, y, z (it must cross it), canonical in the
 // order of p, q and of x, y, z.

@@ -76,11 +76,13 @@ void FluidSearch3::for_each_piece(const Point3 t[4], int& hint, Visit&& visit) {
   }
   const Point3 centroid = 0.25 * (t[0] + t[1] + t[2] + t[3]);
   const int start = locate(centroid, hint);
+  TetFaces t_faces;  // t's planes, formed once for all the fluid tetrahedra it is clipped against
+  t_faces.set(t);
   Point3 k_corners[4];
   unsigned beyond;
   if (start >= 0) {
     fluid_.corners(start, k_corners);
-    Piece3 first = clip(t, k_corners, beyond);
+    Piece3 first = clip(t, t_faces, k_corners, beyond);
     if (first.n > 0) {
       hint = start;
       queue_.clear();
@@ -91,7 +93,7 @@ void FluidSearch3::for_each_piece(const Point3 t[4], int& hint, Visit&& visit) {
         const int k = queue_[q];
         if (q > 0) {
           fluid_.corners(k, k_corners);
-          const Piece3 piece = clip(t, k_corners, beyond);
+          const Piece3 piece = clip(t, t_faces, k_corners, beyond);
           if (piece.n == 0) continue;
           visit(k, piece);
         } else {
@@ -119,7 +121,7 @@ void FluidSearch3::for_each_piece(const Point3 t[4], int& hint, Visit&& visit) {
   grid_.for_each_in_box(lo, hi, [&](int k) {
     if (!mark(k)) return;
     fluid_.corners(k, k_corners);
-    const Piece3 piece = clip(t, k_corners);
+    const Piece3 piece = clip(t, t_faces, k_corners, beyond);
     if (piece.n > 0) {
       hint = k;
       visit(k, piece);

@@ -70,6 +70,35 @@ inline int orient3d(Point3 a, Point3 b, Point3 c, Point3 d) {
   return s != 0 ? s : orient3d_exact(a, b, c, d);
 }
 
+// The plane through p, q, r prepared for many tests: sign(x) = orient3d(p, q, r, x), exactly, with the
+// filter's 2 x 2 minors of q - p, r - p formed once. The filter is orient3d's (the same products, the
+// same bound: each term a difference times a minor of the other two differences), the exact path too.
+struct PlaneSide {
+  Point3 p, q, r;
+  Point3 n, pn;        // the minors' differences (q - p) x (r - p) and the sums of their absolute values
+  double largest = 0;  // max |component| of q - p and r - p
+  void set(Point3 a, Point3 b, Point3 c) {
+    p = a;
+    q = b;
+    r = c;
+    const Point3 u = b - a, v = c - a;
+    const double t1 = u.y * v.z, t2 = u.z * v.y, t3 = u.z * v.x, t4 = u.x * v.z, t5 = u.x * v.y, t6 = u.y * v.x;
+    n = {t1 - t2, t3 - t4, t5 - t6};
+    pn = {std::fabs(t1) + std::fabs(t2), std::fabs(t3) + std::fabs(t4), std::fabs(t5) + std::fabs(t6)};
+    largest = std::max({std::fabs(u.x), std::fabs(u.y), std::fabs(u.z), std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+  }
+  int sign(Point3 x) const {
+    const Point3 w = x - p;
+    const double det = w.x * n.x + w.y * n.y + w.z * n.z;
+    const double permanent = std::fabs(w.x) * pn.x + std::fabs(w.y) * pn.y + std::fabs(w.z) * pn.z;
+    const double big = std::max({largest, std::fabs(w.x), std::fabs(w.y), std::fabs(w.z)});
+    const double bound = 7.7715611723761e-16 * permanent + 0x1p-1068 * (1 + big);
+    if (det > bound) return 1;
+    if (-det > bound) return -1;
+    return orient3d_exact(p, q, r, x);
+  }
+};
+
 // Orientation of the projections of a, b, c onto the coordinate plane that drops axis (0: x, 1: y, 2: z),
 // as orient2d on (y, z), (z, x) and (x, y) respectively: for points of a plane whose normal has a non-zero
 // component along axis, the orientation within that plane (up to that component's sign). Exact.

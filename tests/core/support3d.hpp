@@ -88,6 +88,9 @@ inline std::string piece_shape(const Piece3& p, const Tet& a, const Tet& b, doub
       if (dot(edge[i], edge[i]) > dot(edge[longest], edge[longest])) longest = i;
     Point3 n = cross(edge[(longest + 1) % 3], edge[(longest + 2) % 3]);
     const double len = std::sqrt(dot(n, n));
+    // a face whose three corners are collinear to within round-off has no well-defined plane to measure
+    // against (its area is below 1e-12 of its longest edge squared): no check
+    if (!(len > 1e-12 * dot(edge[longest], edge[longest]))) return 0.0;
     const double d = 6 * ref::exact_tet_volume(q, r, s, down(v)) / len;
     return std::ldexp(ref::exact_orientation3d(q, r, s, u[face]) > 0 ? d : -d, e);
   };
