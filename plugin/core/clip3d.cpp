@@ -226,9 +226,18 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
   auto normal = [&](int plane) { return plane < 4 ? face_normal(a, plane) : face_normal(b, plane - 4); };
   Candidate c[32];
   int n = 0;
-  auto whole = [&](const Point3 t[4], int shift) {
-    for (int i = 0; i < 4; ++i) c[i] = {t[i], faces_at_vertex(i) << shift};
-    return assemble(c, 4, normal);
+  // A whole tetrahedron: its own vertices, face j the other three (no sorting, no walk).
+  auto whole = [](const Point3 t[4], int shift) {
+    Piece3 out;
+    out.n = 4;
+    out.faces = 4;
+    for (int i = 0; i < 4; ++i) {
+      out.v[i] = t[i];
+      out.planes[i] = static_cast<unsigned char>(faces_at_vertex(i) << shift);
+      for (int k = 0; k < 3; ++k) out.face_index[3 * i + k] = static_cast<unsigned char>(kFace[i][k]);
+      out.face_start[i + 1] = 3 * (i + 1);
+    }
+    return out;
   };
   // sb[i][j]: side of a[i] with respect to b's face j; sa[j][i] likewise.
   int sb[4][4], sa[4][4];
