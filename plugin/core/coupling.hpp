@@ -7,32 +7,17 @@
 #include "fluid_search.hpp"
 #include "map.hpp"
 #include "mesh.hpp"
+#include "options.hpp"
 #include "polynomial_basis.hpp"
+#include "scale.hpp"
 #include "sparse.hpp"
 
 namespace dlmfsi {
 
-struct CouplingOptions {
-  double c1 = 1, c2 = 1;
-  // Fluid component fluid_components[p] pairs with multiplier component solid_components[p].
-  std::vector<int> fluid_components{0}, solid_components{0};
-  enum class Method { Exact, Quadrature } method = Method::Exact;
-  // Chain: grad_s(u o X) = (grad_x u)(X) grad_s X, the derivative of the composed function.
-  // Listing: the printed listings' reversed product Grad(X,Y) * Grad(u,v) (needs exactly two pairs).
-  enum class Gradient { Chain, Listing } gradient = Gradient::Chain;
-  int qforder = -1;    // degree of the rule on pieces of non-affine images and on quadrature leaves; -1: auto
-  double tol = 1e-3;   // quadrature: leaves that straddle a fluid edge are split down to tol * triangle area
-  int subdivide = -1;  // curved images: split each solid triangle into 4^subdivide straight ones; -1: auto (2)
-  bool drop_outside = false;    // allow the mapped solid to leave the fluid mesh, dropping that part
-  double outside_tol = 1e-10;   // relative to the mapped solid area, before it is an error
-  // Assemble only share `part` of `parts` contiguous shares of the solid triangles (a distributed run sums
-  // the shares' matrices to the whole).
-  int part = 0, parts = 1;
-  int threads = 1;  // over solid triangles; used when the bases and the map are polynomial (fitted)
-};
-
 struct CouplingReport {
   long solid_triangles = 0, pieces = 0, points = 0, affine = 0, straight = 0, curved = 0;
+  // images split into straight parts (curved, or far from affine: split.hpp), and the parts
+  long split = 0, parts = 0;
   double image_area = 0, outside_area = 0;  // of the mapped solid, and the part outside the fluid mesh
   int worst_triangle = -1;                  // the solid triangle with most area outside
   double worst_outside = 0;
@@ -51,8 +36,10 @@ class FluidSide {
   FluidSide& operator=(const FluidSide&) = delete;
   // The fluid mesh with its triangles along a Morton curve (vertices in order of first use), and the space
   // on those triangles: triangle k here is the caller's triangle space().original()[k]. Nearby triangles
-  // lie close in memory, which keeps large fluid meshes in the caches.
+  // lie close in memory, which keeps large fluid meshes in the caches. The coordinates are the caller's
+  // times 2^-scale() (scale.hpp), the space's derivatives the caller's times 2^scale().
   const Mesh& mesh() const { return mesh_; }
+  int scale() const { return scale_; }
   const RenumberedBasis& space() const { return space_; }
   const std::vector<int>& components() const { return components_; }
   int degree() const { return degree_; }
@@ -62,6 +49,8 @@ class FluidSide {
   const int* dofs(int k) const { return &dofs_[static_cast<size_t>(k) * space_.local_dofs()]; }
 
  private:
+  int scale_;
+  ScaledBasis scaled_space_;
   RenumberedBasis space_;  // holds the order; before mesh_, which is built from it
   Mesh mesh_;
   std::vector<int> components_;
