@@ -632,6 +632,7 @@ FluidSide::FluidSide(Mesh mesh, const Basis& space, const std::vector<int>& comp
       components_(components),
       degree_((check_components(space, components, "fluid", "fluid space"), polynomial_degree(space, components))), grid_(mesh_),
       basis_(space_, mesh_, degree_, components), dofs_(static_cast<size_t>(mesh_.size()) * space.local_dofs()) {
+  check_mesh_planar(mesh_, grid_, "the fluid mesh", &space_.original());
   for (int k = 0; k < mesh_.size(); ++k) space_.dofs(k, &dofs_[static_cast<size_t>(k) * space.local_dofs()]);
 }
 

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "errors.hpp"
+#include "predicates.hpp"
 
 namespace dlmfsi {
 
@@ -59,6 +60,94 @@ void check_options(const Basis& fluid_space, const Basis& multiplier, const Coup
   if (opt.parts < 1 || opt.part < 0 || opt.part >= opt.parts)
     throw Error("part=[" + std::to_string(opt.part) + ", " + std::to_string(opt.parts) +
                 "] needs 0 <= rank < size");
+}
+
+namespace {
+
+// Is v strictly between p and q? (v on the line pq: exact comparisons along the longer coordinate.)
+bool strictly_between(Point v, Point p, Point q) {
+  if (std::fabs(q.x - p.x) >= std::fabs(q.y - p.y))
+    return (v.x > p.x && v.x < q.x) || (v.x < p.x && v.x > q.x);
+  return (v.y > p.y && v.y < q.y) || (v.y < p.y && v.y > q.y);
+}
+
+// The interval of [u, w] along the line of [p, q] overlaps (p, q) in a segment of positive length.
+bool overlaps_along(Point u, Point w, Point p, Point q) {
+  const bool by_x = std::fabs(q.x - p.x) >= std::fabs(q.y - p.y);
+  auto c = [by_x](Point a) { return by_x ? a.x : a.y; };
+  const double lo = std::max(std::min(c(u), c(w)), std::min(c(p), c(q)));
+  const double hi = std::min(std::max(c(u), c(w)), std::max(c(p), c(q)));
+  return lo < hi;
+}
+
+enum class Contact { None, Overlap, Hanging };
+
+// How triangle t meets the open boundary edge (p, q) of a triangle lying on its left.
+Contact contact(const Point t[3], Point p, Point q) {
+  int o[3];
+  bool left = true, right = true;
+  for (int i = 0; i < 3; ++i) {
+    o[i] = orient2d(p, q, t[i]);
+    if (o[i] < 0) left = false;
+    if (o[i] > 0) right = false;
+  }
+  if (!left && !right) {
+    // t straddles the line: its interior meets the open segment unless one of t's edge lines has p and q on
+    // its closed outer side (separating axes of a triangle and a segment).
+    for (int e = 0; e < 3; ++e)
+      if (orient2d(t[e], t[(e + 1) % 3], p) <= 0 && orient2d(t[e], t[(e + 1) % 3], q) <= 0) return Contact::None;
+    return Contact::Overlap;
+  }
+  // t on one closed side: it touches the open segment at a vertex inside it, or along one of its edges.
+  bool touches = false, same_edge = false;
+  for (int i = 0; i < 3; ++i)
+    if (o[i] == 0 && strictly_between(t[i], p, q)) touches = true;
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    if (o[i] == 0 && o[j] == 0 && overlaps_along(t[i], t[j], p, q)) {
+      touches = true;
+      if ((t[i] == q && t[j] == p) || (t[i] == p && t[j] == q)) same_edge = true;
+    }
+  }
+  if (!touches) return Contact::None;
+  if (left) return Contact::Overlap;  // on the edge's own triangle's side
+  return same_edge ? Contact::None : Contact::Hanging;  // a crack is allowed; a hanging vertex is not
+}
+
+}  // namespace
+
+void check_mesh_planar(const Mesh& mesh, const FluidGrid& grid, const std::string& name,
+                       const std::vector<int>* original) {
+  auto id = [original](int k) { return std::to_string(original ? (*original)[k] : k); };
+  std::vector<int> seen(mesh.size(), -1);
+  for (int k = 0; k < mesh.size(); ++k)
+    for (int i = 0; i < 3; ++i) {
+      const Point p = mesh.vertex(k, (i + 1) % 3), q = mesh.vertex(k, (i + 2) % 3);
+      const int n = mesh.neighbours[k][i];
+      if (n >= 0) {
+        // The neighbour's vertex opposite the shared edge lies on the other side.
+        if (n < k) continue;
+        for (int j = 0; j < 3; ++j)
+          if (mesh.neighbours[n][j] == k && orient2d(p, q, mesh.vertex(n, j)) >= 0)
+            throw Error(name + " overlaps itself: triangles " + id(k) + " and " + id(n) +
+                        " lie on the same side of their shared edge");
+        continue;
+      }
+      const Point lo{std::min(p.x, q.x), std::min(p.y, q.y)}, hi{std::max(p.x, q.x), std::max(p.y, q.y)};
+      const int stamp = 3 * k + i;
+      grid.for_each_in_box(lo, hi, [&](int j) {
+        if (j == k || seen[j] == stamp) return;
+        seen[j] = stamp;
+        Point t[3];
+        mesh.corners(j, t);
+        const Contact c = contact(t, p, q);
+        if (c == Contact::Overlap)
+          throw Error(name + " overlaps itself: triangles " + id(k) + " and " + id(j) + " overlap");
+        if (c == Contact::Hanging)
+          throw Error(name + " is not conforming: triangle " + id(j) + " touches the inside of an edge of triangle " +
+                      id(k) + " that has no neighbour (a hanging vertex)");
+      });
+    }
 }
 
 void check_finite(const CsrMatrix& matrix, const CouplingOptions& opt) {
