@@ -15,6 +15,11 @@ namespace dlmfsi {
 void check_components(const Basis& basis, const std::vector<int>& components, const std::string& side,
                       const std::string& space);
 
+// The rule degree and the subdivision level given by a script (-1, the default "auto", is not one of them):
+// their costs grow as qforder^2 points per piece and 4^subdivide parts per curved triangle.
+void check_qforder(long qforder);
+void check_subdivide(long subdivide);
+
 // Every option: component lists of one length, in range, no pair listed twice; c1 and c2 finite; qforder,
 // subdivide, threads and the share within their ranges; tol and outside_tol not NaN nor negative.
 void check_options(const Basis& fluid_space, const Basis& multiplier, const CouplingOptions& opt);
