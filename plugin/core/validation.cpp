@@ -20,6 +20,7 @@ void check_components(const Basis& basis, const std::vector<int>& components, co
 namespace {
 
 std::string number(double v) {
+  if (std::isnan(v)) return "NaN";
   char s[40];
   std::snprintf(s, sizeof s, "%g", v);
   return s;
@@ -63,7 +64,7 @@ void check_options(const Basis& fluid_space, const Basis& multiplier, const Coup
   if (opt.qforder != -1) check_qforder(opt.qforder);
   if (opt.subdivide != -1) check_subdivide(opt.subdivide);
   if (!(opt.tol > 0 && opt.tol < 1)) throw Error("tol=" + number(opt.tol) + " must lie in (0, 1)");
-  if (!(opt.outside_tol >= 0)) throw Error("outsidetol=" + number(opt.outside_tol) + " must be >= 0 (not NaN)");
+  if (!(opt.outside_tol >= 0)) throw Error("outsidetol=" + number(opt.outside_tol) + " must be a number >= 0");
   if (opt.threads < 1) throw Error("threads=" + std::to_string(opt.threads) + " must be at least 1");
   if (opt.parts < 1 || opt.part < 0 || opt.part >= opt.parts)
     throw Error("part=[" + std::to_string(opt.part) + ", " + std::to_string(opt.parts) +
