@@ -1,5 +1,6 @@
 #include "split.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -83,11 +84,39 @@ bool split_image(const MappedTriangle& mt, int level, double target, int max_dep
     boundary.push_back(m);
     self(self, m, b);
   };
+  // A curved image's outer boundary is replaced by the chords between the images of the level-L points
+  // on the triangle's edges, whatever the leaves inside: a point between two of them is placed on their
+  // chord, at the same fraction. The solid triangle sharing that edge uses the same chords, so the
+  // triangles' parts meet without gap or overlap.
+  const double steps = std::ldexp(1.0, level);
+  auto corner_of_part = [&](Point xi) {
+    if (mt.straight) return image_of(xi);
+    // the outer edge xi through xi, as the parameter s along it and its end points
+    Point from, to;
+    double s;
+    if (xi.y == 0) {
+      s = xi.x;
+      from = {0, 0}, to = {1, 0};
+    } else if (xi.x == 0) {
+      s = xi.y;
+      from = {0, 0}, to = {0, 1};
+    } else if (xi.x + xi.y == 1) {
+      s = xi.y;
+      from = {1, 0}, to = {0, 1};
+    } else {
+      return image_of(xi);
+    }
+    const double a = std::floor(s * steps) / steps;
+    if (a == s) return image_of(xi);
+    const double t = (s - a) * steps, b = a + 1 / steps;
+    const Point pa = image_of(from + a * (to - from)), pb = image_of(from + b * (to - from));
+    return pa + t * (pb - pa);
+  };
   auto add = [&](const Point xi[3], double nl) {
     MapPart part;
     for (int i = 0; i < 3; ++i) {
       part.xi[i] = xi[i];
-      part.y[i] = image_of(xi[i]);
+      part.y[i] = corner_of_part(xi[i]);
     }
     part.nonlinearity = nl;
     const int o = orient2d(part.y[0], part.y[1], part.y[2]);

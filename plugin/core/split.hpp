@@ -12,7 +12,9 @@
 //    finer neighbours that lie on its edges, fanned from the image of its centroid (a single triangle when
 //    no neighbour is finer). Neighbouring leaves then share their boundary polylines, so the parts tile
 //    the polygon through the images of the outer boundary's points: the image itself where its edges are
-//    straight (P1b maps), the chord polygon of curved edges otherwise.
+//    straight (P1b maps). Curved edges are replaced by the chords between the images of their level-L
+//    points (points of finer leaves on them are placed on these chords), the same chords as the
+//    neighbouring solid triangle's: the parts of all triangles tile the solid's chord polygon.
 // Leaf corners are dyadic points of the reference triangle, exact in floating point, so shared corners and
 // hanging points are found by exact comparison.
 #pragma once
