@@ -245,7 +245,7 @@ std::vector<int> DlmfsiOp::components(int i, const std::vector<Expression>& list
   if (v.empty()) throw dlmfsi::Error(std::string(side) + "= is empty: list the components to couple");
   std::vector<int> out;
   for (long c : v) {
-    if (c < 0 || c > INT_MAX) throw dlmfsi::Error(std::string(side) + " component " + std::to_string(c) + " out of range");
+    if (c < INT_MIN || c > INT_MAX) throw dlmfsi::Error(std::string(side) + " component " + std::to_string(c) + " out of range");
     out.push_back(static_cast<int>(c));
   }
   return out;
