@@ -128,7 +128,8 @@ class Worker {
       outside = quadrature(mt);
     report_.image_area += image_area;
     // the image area less the pieces' areas: zero up to the round-off of the pieces' corners
-    if (opt_.method == CouplingOptions::Method::Exact && outside < mt.area_round_off(report_.pieces - pieces)) outside = 0;
+    if (opt_.method == CouplingOptions::Method::Exact && outside > 0 && outside < mt.area_round_off(report_.pieces - pieces))
+      outside = 0;
     outside = std::max(outside, 0.0);
     report_.outside_area += outside;
     if (outside > report_.worst_outside) {
@@ -706,10 +707,11 @@ CsrMatrix assemble_coupling(const FluidSide& side, const SolidSide& solid_side, 
   const int threads = parallel ? std::max(1, std::min(opt.threads, 64)) : 1;
   // The map into the fluid side's scaled coordinates.
   const ScaledMap scaled_map(map, side.scale());
+  const SolidMap& fluid_map = side.scale() == 0 ? map : scaled_map;
   std::vector<Worker> workers;
   workers.reserve(threads);
   for (int t = 0; t < threads; ++t)
-    workers.emplace_back(side, solid, multiplier, solid_poly, scaled_map, opt, total);
+    workers.emplace_back(side, solid, multiplier, solid_poly, fluid_map, opt, total);
   auto since = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   total.setup_seconds = since();
   // Contiguous shares of the ordered triangles, so that the sums come out in the same order for any thread

@@ -250,23 +250,18 @@ void MappedTriangle::prepare(const Mesh& solid_mesh, const SolidMap& map, int kk
     image_inv_[0][1] = -f2.x / di;
     image_inv_[1][0] = -f1.y / di;
     image_inv_[1][1] = f1.x / di;
-    magnitude_ = 0;
-    perimeter_ = 0;
-    for (int i = 0; i < 3; ++i) {
-      magnitude_ = std::max({magnitude_, std::fabs(image[i].x), std::fabs(image[i].y)});
-      const Point e = image[(i + 1) % 3] - image[i];
-      perimeter_ += std::hypot(e.x, e.y);
-    }
-    const double inv_norm = std::max(std::fabs(image_inv_[0][0]) + std::fabs(image_inv_[0][1]),
-                                     std::fabs(image_inv_[1][0]) + std::fabs(image_inv_[1][1]));
-    xi_round_off_ = 8 * kEps * magnitude_ * inv_norm;
   }
   if (degree_ == 1) {  // a P1 map: affine and straight by construction
     straight = affine = true;
     nonlinearity = 0;
   } else {
     classify();
-    if (!affine) check_fold();
+    if (!affine) {
+      check_fold();
+      const double inv_norm = std::max(std::fabs(image_inv_[0][0]) + std::fabs(image_inv_[0][1]),
+                                       std::fabs(image_inv_[1][0]) + std::fabs(image_inv_[1][1]));
+      xi_round_off_ = 8 * kEps * magnitude() * inv_norm;
+    }
   }
   if (affine) {
     // dX/ds = [image edges] [solid edges]^-1
@@ -286,7 +281,7 @@ void MappedTriangle::classify() {
   // Round-off of the fit and of the map's own evaluation scales with the coordinates, not the triangle.
   const double scale = std::fabs(image[1].x - image[0].x) + std::fabs(image[1].y - image[0].y) +
                        std::fabs(image[2].x - image[0].x) + std::fabs(image[2].y - image[0].y);
-  const double tol = 1e-12 * scale + 1e-14 * magnitude_;
+  const double tol = 1e-12 * scale + 1e-14 * magnitude();
   const Point edge_points[6] = {{0.5, 0}, {0.5, 0.5}, {0, 0.5}, {0.25, 0}, {0.75, 0.25}, {0, 0.75}};
   const Point inner_points[3] = {{1.0 / 3, 1.0 / 3}, {0.2, 0.6}, {0.6, 0.15}};
   straight = true;
@@ -353,6 +348,18 @@ double MappedTriangle::nonlinearity_on(const Point ref[3], const Point img[3]) c
     worst = std::max(worst, std::isfinite(v) ? v : 1e300);
   }
   return worst;
+}
+
+double MappedTriangle::magnitude() const {
+  double m = 0;
+  for (const Point& p : image) m = std::max({m, std::fabs(p.x), std::fabs(p.y)});
+  return m;
+}
+
+double MappedTriangle::area_round_off(long pieces) const {
+  double perimeter = 0;  // at most sqrt(2) times the perimeter: a bound suffices
+  for (int i = 0; i < 3; ++i) perimeter += std::fabs(image[(i + 1) % 3].x - image[i].x) + std::fabs(image[(i + 1) % 3].y - image[i].y);
+  return 8 * kEps * magnitude() * perimeter * static_cast<double>(pieces + 2);
 }
 
 void MappedTriangle::reference_derivatives(Point xi, Point& x, Point& d1, Point& d2) const {

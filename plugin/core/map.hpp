@@ -101,7 +101,7 @@ class MappedTriangle {
   // The round-off of an area inside the image computed from `pieces` convex pieces whose corners are
   // rounded fluid coordinates: each corner is known to about eps |y|, so a piece's area to about
   // eps |y| times its perimeter. Below this, the area outside the fluid mesh is not resolved.
-  double area_round_off(long pieces) const { return 8 * kEps * magnitude_ * perimeter_ * static_cast<double>(pieces + 2); }
+  double area_round_off(long pieces) const;
 
   // The reference point of y under the affine interpolant of the corner images (for affine triangles, the
   // pull-back itself).
@@ -115,6 +115,8 @@ class MappedTriangle {
   void classify();
   // Throws Error when the jacobian determinant is not positive somewhere on the triangle.
   void check_fold() const;
+  // The largest |coordinate| of the corner images.
+  double magnitude() const;
   // || A^-1 dX/dxi(xi) - I || (see nonlinearity).
   double jacobian_variation(Point xi) const;
   // value and reference-coordinate derivatives of the fitted polynomial
@@ -124,7 +126,6 @@ class MappedTriangle {
   static constexpr double kEps = 0x1p-52;
   const SolidMap* map_ = nullptr;
   int degree_ = -1;
-  double magnitude_ = 0, perimeter_ = 0;  // of the image's corners: largest |coordinate|, perimeter
   // Newton's floor in reference coordinates: a point y is known to about eps |y|, which is this much in xi
   // (small triangles far from the origin: 1e-9 for a triangle of 1e-7 at distance 1).
   double xi_round_off_ = 0;

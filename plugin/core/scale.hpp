@@ -1,5 +1,5 @@
 // Fluid coordinates scaled by a power of two, so that the geometry works at the same size whatever the
-// mesh's units.
+// mesh's units (meshes whose coordinates lie within 2^-64 .. 2^64 are left as they are).
 //
 // Multiplying by 2^-e is exact for normal numbers: the exact predicates decide the same, and every sum,
 // product and quotient of coordinates comes out as the unscaled one times a power of two. With the fluid
@@ -17,7 +17,8 @@
 
 namespace dlmfsi {
 
-// The exponent e with max |coordinate| * 2^-e in [0.5, 1); 0 for a mesh without vertices or all at the origin.
+// The exponent e with max |coordinate| * 2^-e in [0.5, 1), or 0 when max |coordinate| lies in [2^-64, 2^64]
+// (already safe: the scaling would only cost time) or the mesh has no vertex away from the origin.
 int scale_exponent(const Mesh& mesh);
 
 // The mesh with every coordinate multiplied by 2^-e.
@@ -52,7 +53,7 @@ class ScaledBasis : public Basis {
 // The map into fluid coordinates multiplied by 2^-e: X and dX/ds multiplied by 2^-e.
 class ScaledMap : public SolidMap {
  public:
-  ScaledMap(const SolidMap& base, int e) : base_(base), factor_(std::ldexp(1.0, -e)) {}
+  ScaledMap(const SolidMap& base, int e) : base_(base), factor_(std::ldexp(1.0, -e)), degree_(base.degree()) {}
   MapValue evaluate(int k, Point xi) const override {
     MapValue v = base_.evaluate(k, xi);
     v.x = factor_ * v.x;
@@ -60,12 +61,13 @@ class ScaledMap : public SolidMap {
       for (double& d : row) d *= factor_;
     return v;
   }
-  int degree() const override { return base_.degree(); }
+  int degree() const override { return degree_; }
   bool coefficients(int k, double* cx, double* cy) const override;
 
  private:
   const SolidMap& base_;
   double factor_;
+  int degree_;
 };
 
 }  // namespace dlmfsi
