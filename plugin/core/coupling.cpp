@@ -213,7 +213,9 @@ class Worker {
     }
     ++report_.split;
     report_.parts += static_cast<long>(parts_.size());
-    for (const MapPart& part : parts_) clip_image(part.y, degree >= 0 ? degree : rule_degree(part.nonlinearity), &part);
+    // Each part gets the rule of its own nonlinearity (smaller than the triangle's), or qforder.
+    for (const MapPart& part : parts_)
+      clip_image(part.y, opt_.qforder >= 0 ? opt_.qforder : rule_degree(part.nonlinearity), &part);
     return outside;
   }
 
