@@ -1,42 +1,46 @@
-# dlmfsi: build, test and run the comparisons. Every target installs missing Debian packages first
-# (scripts/install-deps, as root) and builds in build/.
+# dlmfsi: build, test and run the comparisons in build/. `make deps` installs the Debian packages the
+# project uses (scripts/install-deps, as root) and checks every program it runs (scripts/check-tools);
+# the README's two commands, `make test` and `make compare`, call it first so that they set up a fresh
+# Debian 12 machine.
 BUILD ?= build
 JOBS ?= 2
 OUT ?= results
 QUICK ?= 0
 FF := bin/ff
 
-.PHONY: all deps build test compare bench evidence sanitize fuzz clean
+.PHONY: all deps build test compare bench evidence sanitize fuzz fresh-check clean
 
 all: build
 
 deps:
 	@scripts/install-deps
+	@scripts/check-tools
 
-build: deps
+build:
 	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release > $(BUILD).configure.log 2>&1 || (cat $(BUILD).configure.log; exit 1)
 	@cmake --build $(BUILD) -j $(JOBS)
 
 # All tests: C++ unit tests (GoogleTest) and FreeFEM script tests, through ctest.
-test: build
+test: deps build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 # The main job: coupling accuracy and time, built-in quadrature vs dlmfsi, then the paper scenes, then the
 # summary of the last `make evidence` run (if any).
-compare: build
+compare: deps build
 	@mkdir -p $(OUT)
 	DLMFSI_BUILD=$(abspath $(BUILD)) $(FF) edp/compare_coupling.edp -out $(OUT)
 	@if [ -f scripts/compare-scenes ]; then DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(OUT) scripts/compare-scenes; fi
-	@OUT=$(abspath $(OUT)) scripts/evidence-summary
+	@OUT=$(abspath $(OUT)) scripts/evidence --summary
 
 # Assembly speed over a sweep of sizes (built-in vs dlmfsi, threads, cost per piece, peak memory):
 # CSV + PNG under $(OUT)/bench. QUICK=1 for tiny sizes.
-bench: build
+bench: deps build
+	@cmake --build $(BUILD) --target coupling_bench -j $(JOBS)
 	DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) QUICK=$(QUICK) scripts/bench
 
 # Accuracy against speed, the scenes' Pareto fronts and the stability map: CSV + PNG under
 # $(OUT)/evidence. QUICK=1 runs the same pipeline on tiny sizes.
-evidence: build
+evidence: deps build
 	DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) QUICK=$(QUICK) scripts/evidence
 
 # AddressSanitizer + UndefinedBehaviorSanitizer build of the core, running the unit tests; the property
@@ -56,11 +60,17 @@ FUZZ_SOURCES := tests/fuzz/fuzz_clip.cpp plugin/core/clip.cpp plugin/core/predic
   plugin/core/fluid_search.cpp
 fuzz:
 	@scripts/install-deps fuzz
+	@scripts/check-tools fuzz
 	@mkdir -p $(BUILD)-fuzz/corpus
 	$(CLANGXX) -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
 	  -Iplugin/core -Itests/core $(FUZZ_SOURCES) -o $(BUILD)-fuzz/fuzz_clip
 	$(BUILD)-fuzz/fuzz_clip -max_total_time=$(FUZZ_TIME) -print_final_stats=1 \
 	  -artifact_prefix=$(BUILD)-fuzz/ $(BUILD)-fuzz/corpus
+
+# The README's two commands as a new user meets them: a bare Debian 12 root (debootstrap minbase), a clean
+# clone of HEAD, `make test` then `make compare` in a chroot (scripts/fresh-check; root, 20-30 minutes).
+fresh-check:
+	OUT=$(abspath $(OUT)) scripts/fresh-check
 
 clean:
 	rm -rf $(BUILD) $(BUILD)-sanitize $(BUILD)-fuzz $(BUILD).configure.log
