@@ -29,15 +29,16 @@ std::string number(double v) {
 }  // namespace
 
 void check_qforder(long qforder) {
-  if (qforder < 0 || qforder > kMaxQforder)
+  if (qforder < -1 || qforder > kMaxQforder)
     throw Error("qforder=" + std::to_string(qforder) + " out of range (0 to " + std::to_string(kMaxQforder) +
-                ": a rule of degree " + std::to_string(kMaxQforder) + " has 961 points per piece)");
+                ", or -1 for the automatic choice: a rule of degree " + std::to_string(kMaxQforder) +
+                " has 961 points per piece)");
 }
 
 void check_subdivide(long subdivide) {
-  if (subdivide < 0 || subdivide > kMaxSubdivide)
+  if (subdivide < -1 || subdivide > kMaxSubdivide)
     throw Error("subdivide=" + std::to_string(subdivide) + " out of range (0 to " + std::to_string(kMaxSubdivide) +
-                ": each curved solid triangle is split into 4^subdivide parts, at most " +
+                ", or -1 for the default: each curved solid triangle is split into 4^subdivide parts, at most " +
                 std::to_string(1 << (2 * kMaxSubdivide)) + ")");
 }
 
@@ -61,8 +62,8 @@ void check_options(const Basis& fluid_space, const Basis& multiplier, const Coup
     throw Error("gradient=\"listing\" needs exactly two component pairs (a 2D vector field)");
   if (!std::isfinite(opt.c1)) throw Error("c1=" + number(opt.c1) + " is not finite");
   if (!std::isfinite(opt.c2)) throw Error("c2=" + number(opt.c2) + " is not finite");
-  if (opt.qforder != -1) check_qforder(opt.qforder);
-  if (opt.subdivide != -1) check_subdivide(opt.subdivide);
+  check_qforder(opt.qforder);
+  check_subdivide(opt.subdivide);
   if (!(opt.tol > 0 && opt.tol < 1)) throw Error("tol=" + number(opt.tol) + " must lie in (0, 1)");
   if (!(opt.outside_tol >= 0)) throw Error("outsidetol=" + number(opt.outside_tol) + " must be a number >= 0");
   if (opt.threads < 1) throw Error("threads=" + std::to_string(opt.threads) + " must be at least 1");

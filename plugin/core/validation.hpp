@@ -15,8 +15,8 @@ namespace dlmfsi {
 void check_components(const Basis& basis, const std::vector<int>& components, const std::string& side,
                       const std::string& space);
 
-// The rule degree and the subdivision level given by a script (-1, the default "auto", is not one of them):
-// their costs grow as qforder^2 points per piece and 4^subdivide parts per curved triangle.
+// The rule degree and the subdivision level (-1: the automatic choice, the default): their costs grow as
+// qforder^2 points per piece and 4^subdivide parts per curved triangle.
 void check_qforder(long qforder);
 void check_subdivide(long subdivide);
 

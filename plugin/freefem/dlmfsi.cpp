@@ -283,7 +283,7 @@ dlmfsi::CouplingOptions DlmfsiOp::options(Stack stack) const {
     o.gradient = Options::Gradient::Listing;
   else
     throw dlmfsi::Error("gradient=\"" + gradient + "\": expected \"chain\" or \"listing\"");
-  // Given values are checked here (-1, the core's "auto", is not a value a script may pass).
+  // Given values are checked before they become ints (-1: the automatic choice, as when not given).
   if (nargs[kQforder]) {
     const long q = arg(kQforder, stack, 0L);
     dlmfsi::check_qforder(q);

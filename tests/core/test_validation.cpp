@@ -98,6 +98,7 @@ TEST(Options, EachBadOptionIsNamed) {
       {"outsidetol=-1 must be a number >= 0", [](CouplingOptions& o) { o.outside_tol = -1; }},
       {"tol=0 must lie in (0, 1)", [](CouplingOptions& o) { o.tol = 0; }},
       {"qforder=-5 out of range", [](CouplingOptions& o) { o.qforder = -5; }},
+      {"subdivide=-2 out of range", [](CouplingOptions& o) { o.subdivide = -2; }},
       {"qforder=61 out of range", [](CouplingOptions& o) { o.qforder = 61; }},
       {"subdivide=7 out of range", [](CouplingOptions& o) { o.subdivide = 7; }},
       {"threads=0 must be at least 1", [](CouplingOptions& o) { o.threads = 0; }},
