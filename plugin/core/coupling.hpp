@@ -96,13 +96,18 @@ class SolidSide {
 //   int_T f(s) ds = int_{X(T)} f(X^-1(y)) |det grad X(X^-1(y))|^-1 dy,
 // with a rule exact for the product's degree when X is affine on T (exact to round-off), and with Newton
 // pull-back and a rule of degree qforder otherwise; the error then falls spectrally with qforder. By
-// default the degree is chosen per triangle from the map's nonlinearity there, for an error about 1e-12. Images with curved edges (P2 maps) are replaced by 4^subdivide straight
-// sub-triangles (the pull-back still uses the true map): only the band between the solid's curved
-// boundary and its chords is lost, an error falling 4x per level.
+// default the degree is chosen per triangle from the map's nonlinearity there, for an error about 1e-13,
+// and an image too far from affine is first split into parts on which the map is nearly affine
+// (split.hpp), up to the fold. Images with curved edges (P2 maps) are replaced by 4^subdivide straight
+// sub-triangles (the pull-back still uses the true map): the band between the curved edges and their
+// chords is lost, an error falling 4x per level.
 // Quadrature method: a composite rule on each solid triangle, refined where the images of a
 // sub-triangle's corners do not share one fluid triangle, down to tol of its area; the true map at every point.
-// Errors (Error): bad options or components, non-finite/inverted/flat map, a mapped solid outside the
-// fluid mesh by more than outside_tol (unless drop_outside).
+// The fluid coordinates are scaled by a power of two where their size calls for it (scale.hpp).
+// Errors (Error, naming the option or the triangle): bad options or components (validation.hpp), a fluid
+// mesh that overlaps itself or is not conforming, a non-finite, inverted, flat or folded map, solid
+// triangles beyond 1e-150..1e150 in size, a mapped solid outside the fluid mesh by more than outside_tol
+// (unless drop_outside), a matrix that overflows.
 // options.fluid_components and options.solid_components must be the sides' components.
 CsrMatrix assemble_coupling(const FluidSide& fluid, const SolidSide& solid, const SolidMap& map,
                             const CouplingOptions& options, CouplingReport* report = nullptr);
