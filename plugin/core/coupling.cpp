@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <limits>
 #include <mutex>
 #include <thread>
 
@@ -15,16 +16,19 @@
 #include "polynomial_basis.hpp"
 #include "predicates.hpp"
 #include "rules.hpp"
+#include "split.hpp"
+#include "validation.hpp"
 
 namespace dlmfsi {
 
 std::string CouplingReport::summary() const {
   char s[512];
   std::snprintf(s, sizeof s,
-                "dlmfsi: %ld solid triangles (%ld affine, %ld straight, %ld curved), %ld pieces, %ld points, "
-                "degrees fluid %d multiplier %d rule %d/%d, image area %.6g, outside %.3g, %.3f s "
+                "dlmfsi: %ld solid triangles (%ld affine, %ld straight, %ld curved; %ld split into %ld parts), %ld pieces, "
+                "%ld points, degrees fluid %d multiplier %d rule %d/%d, image area %.6g, outside %.3g, %.3f s "
                 "(setup %.3f, pieces %.3f, matrix %.3f)",
-                solid_triangles, affine, straight, curved, pieces, points, fluid_degree, solid_degree, rule_degree,
+                solid_triangles, affine, straight, curved, split, parts, pieces, points, fluid_degree,
+                solid_degree, rule_degree,
                 curved_rule_degree, image_area, outside_area, seconds, setup_seconds, pieces_seconds,
                 seconds - setup_seconds - pieces_seconds);
   return s;
@@ -117,11 +121,15 @@ class Worker {
     (mt.affine ? report_.affine : (mt.straight ? report_.straight : report_.curved))++;
     const double image_area = 0.5 * area2(mt.image[0], mt.image[1], mt.image[2]);
     double outside = 0;
+    const long pieces = report_.pieces;
     if (opt_.method == CouplingOptions::Method::Exact)
       outside = exact(mt);
     else
       outside = quadrature(mt);
     report_.image_area += image_area;
+    // the image area less the pieces' areas: zero up to the round-off of the pieces' corners
+    if (opt_.method == CouplingOptions::Method::Exact && outside > 0 && outside < mt.area_round_off(report_.pieces - pieces))
+      outside = 0;
     outside = std::max(outside, 0.0);
     report_.outside_area += outside;
     if (outside > report_.worst_outside) {
@@ -134,59 +142,80 @@ class Worker {
         if (block_[c * ns_ + i] != 0.0) triplets.push_back({sdofs_[i], columns_[c], block_[c * ns_ + i]});
   }
 
-  // The rule for triangle mt: exact for the product's degree p when the map is affine there. Otherwise the
-  // integrand in fluid coordinates is f(X^-1(y)) / det grad X, a series in the map's nonlinearity d whose
-  // k-th term is a polynomial of degree about p + 2k: degree p + 2k leaves O(d^(k+1)), and k is chosen so
-  // that d^(k+1) < 1e-12 (qforder overrides).
+  // The rule for triangle mt: exact for the product's degree p when the map is affine there; qforder when
+  // given; -1 when the map is so far from affine (nonlinearity above kLeafNonlinearity) that its image is
+  // split into parts first (split.hpp); otherwise rule_degree(nonlinearity).
   int rule_degree(const MappedTriangle& mt) {
     if (mt.affine) return report_.rule_degree;
     if (opt_.qforder >= 0) return opt_.qforder;
-    const double d = std::min(std::max(mt.nonlinearity, 1e-300), 0.5);
-    const int k = std::min(8, std::max(1, static_cast<int>(std::ceil(12.0 / -std::log10(d))) - 1));
-    const int degree = std::min(60, report_.rule_degree + 2 * k);
+    if (mt.nonlinearity > kLeafNonlinearity) return -1;
+    return rule_degree(mt.nonlinearity);
+  }
+
+  // Non-affine: the integrand in fluid coordinates is f(X^-1(y)) / det grad X, a series in the map's
+  // nonlinearity d whose k-th term is a polynomial of degree about p + 2k, so degree p + 2k leaves about
+  // (d / 3)^(k+1) (measured on single triangles with P1b bubbles and P2 maps, d = 0.009 to 0.3: the
+  // relative error falls by about d / 3 for each 2 degrees, and below 1e-13 for the k chosen here: the
+  // smallest with (d / 3)^(k+1) <= 1e-11).
+  int rule_degree(double d) {
+    d = std::min(std::max(d, 1e-300), kLeafNonlinearity);
+    const int k = std::max(1, static_cast<int>(std::ceil(11.0 / -std::log10(d / 3))) - 1);
+    const int degree = std::min(kMaxQforder, report_.rule_degree + 2 * k);
     report_.curved_rule_degree = std::max(report_.curved_rule_degree, degree);
     return degree;
+  }
+
+  // Quadrature method: on a leaf inside one fluid triangle the integrand c2 psi (phi o X) + c1 grad psi .
+  // grad(phi o X), in the solid's reference coordinates, is a polynomial of degree p_solid + p_fluid * m for a
+  // map of degree m, which this rule integrates exactly (qforder overrides).
+  int quadrature_degree(const MappedTriangle& mt) {
+    if (opt_.qforder >= 0) return opt_.qforder;
+    if (mt.affine) return report_.rule_degree;
+    const int m = map_.degree();
+    if (m >= 1 && report_.fluid_degree >= 0 && report_.solid_degree >= 0) {
+      const int degree = std::min(kMaxQforder, report_.solid_degree + report_.fluid_degree * m);
+      report_.curved_rule_degree = std::max(report_.curved_rule_degree, degree);
+      return degree;
+    }
+    return rule_degree(mt.nonlinearity);
   }
 
   // Clips the (straight) image, or its straight sub-triangles, against the fluid; returns the area outside.
   double exact(const MappedTriangle& mt) {
     double outside = 0;
     const int degree = rule_degree(mt);
-    auto clip_image = [&](const Point img[3]) {
+    auto clip_image = [&](const Point img[3], int rule, const MapPart* frame) {
       const int o = orient2d(img[0], img[1], img[2]);
       if (o <= 0) throw Error("the map folds solid triangle " + std::to_string(mt.k) + " (a sub-triangle's image is " +
                               (o == 0 ? "flat)" : "clockwise)"));
       double covered = 0;
       search_.for_each_piece(img, hint_, [&](int kf, const Piece& piece) {
         covered += piece.area();
-        integrate_piece(mt, kf, piece, degree);
+        integrate_piece(mt, kf, piece, rule, frame);
       });
       outside += 0.5 * area2(img[0], img[1], img[2]) - covered;
     };
-    if (mt.straight) {
-      clip_image(mt.image);
+    if (mt.straight && degree >= 0) {
+      clip_image(mt.image, degree, nullptr);
       return outside;
     }
-    // Curved edges: a 2^L x 2^L split of the reference triangle, corners mapped by the true map.
-    const int level = opt_.subdivide >= 0 ? opt_.subdivide : 2;
-    const int n = 1 << level;
-    std::vector<Point> grid((n + 1) * (n + 2) / 2);
-    auto at = [&](int i, int j) -> Point& { return grid[j * (n + 1) - j * (j - 1) / 2 + i]; };
-    for (int j = 0; j <= n; ++j)
-      for (int i = 0; i + j <= n; ++i) {
-        at(i, j) = mt.at({static_cast<double>(i) / n, static_cast<double>(j) / n}).x;
-        if (!std::isfinite(at(i, j).x) || !std::isfinite(at(i, j).y))
-          throw Error("the map is NaN or Inf inside solid triangle " + std::to_string(mt.k));
-      }
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i + j < n; ++i) {
-        const Point up[3] = {at(i, j), at(i + 1, j), at(i, j + 1)};
-        clip_image(up);
-        if (i + j + 1 < n) {
-          const Point down[3] = {at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)};
-          clip_image(down);
-        }
-      }
+    // Curved edges (2^L x 2^L chords), or a map too far from affine for one rule (leaves until nearly
+    // affine): straight parts, each with the pull-backs of its corners.
+    const int level = mt.straight ? 0 : (opt_.subdivide >= 0 ? opt_.subdivide : 2);
+    const double target = degree >= 0 ? std::numeric_limits<double>::infinity() : kLeafNonlinearity;
+    if (!split_image(mt, level, target, kMaxLeafDepth, kMaxLeaves, parts_)) {
+      char msg[240];
+      std::snprintf(msg, sizeof msg,
+                    "the map nearly folds solid triangle %d: its nonlinearity (%.3g on the triangle) stays above %.3g "
+                    "on parts of 2^-%d of its size, or on more than %d parts",
+                    mt.k, mt.nonlinearity, kLeafNonlinearity, kMaxLeafDepth, kMaxLeaves);
+      throw Error(msg);
+    }
+    ++report_.split;
+    report_.parts += static_cast<long>(parts_.size());
+    // Each part gets the rule of its own nonlinearity (smaller than the triangle's), or qforder.
+    for (const MapPart& part : parts_)
+      clip_image(part.y, opt_.qforder >= 0 ? opt_.qforder : rule_degree(part.nonlinearity), &part);
     return outside;
   }
 
@@ -198,25 +227,48 @@ class Worker {
     return out;
   }
 
-  void integrate_piece(const MappedTriangle& mt, int kf, const Piece& piece, int degree) {
+  // The pull-backs of the piece's corners: affine, or Newton from the affine guess of the triangle or, in a
+  // part of a split image (frame), of the part.
+  void pull_back_corners(const MappedTriangle& mt, const Piece& piece, const MapPart* frame, Point* xi) const {
+    MapValue mv;
+    for (int v = 0; v < piece.n; ++v) {
+      const Point y = piece.v[v];
+      if (mt.affine)
+        xi[v] = mt.affine_reference(y);
+      else if (frame)
+        xi[v] = mt.pull_back(y, from_reference(frame->xi, to_reference(frame->y, y)), mv);
+      else
+        xi[v] = mt.pull_back(y, mv);
+    }
+  }
+
+  void integrate_piece(const MappedTriangle& mt, int kf, const Piece& piece, int degree, const MapPart* frame) {
     if (linear_ && mt.affine) {
       integrate_piece_linear(mt, kf, piece);
       return;
     }
-    if (batch_) {
-      integrate_piece_batch(mt, kf, piece, degree);
-      return;
-    }
     ++report_.pieces;
     fluid_columns(kf);
+    Point xi[Piece::kMaxVertices];
+    pull_back_corners(mt, piece, frame, xi);
+    if (batch_)
+      integrate_fan_batch(mt, kf, piece, xi, degree);
+    else
+      integrate_fan_points(mt, kf, piece, xi, degree);
+  }
+
+  // Point by point on the piece's fan, Newton started from the interpolation of the corners' pull-backs xi.
+  void integrate_fan_points(const MappedTriangle& mt, int kf, const Piece& piece, const Point* xi_corners,
+                            int degree) {
     const auto& rule = triangle_rule(degree);
     for (int t = 1; t + 1 < piece.n; ++t) {
       const Point tri[3] = {piece.v[0], piece.v[t], piece.v[t + 1]};
+      const Point guess[3] = {xi_corners[0], xi_corners[t], xi_corners[t + 1]};
       const double area = 0.5 * area2(tri[0], tri[1], tri[2]);
       for (const RulePoint& q : rule) {
         const Point y = from_reference(tri, q.xi);
         MapValue mv;
-        const Point xi = mt.pull_back(y, mv);
+        const Point xi = mt.pull_back(y, from_reference(guess, q.xi), mv);
         const double det = mt.affine ? mt.affine_det : det2(mv.jac);
         if (!(det > 0)) throw Error("the map folds solid triangle " + std::to_string(mt.k));
         fluid_poly_.evaluate(kf, fluid_poly_.to_reference(kf, y), fvals_.data());
@@ -232,16 +284,11 @@ class Worker {
   // from that interpolation between the corners' pull-backs); then each basis is evaluated on all points at
   // once and every entry of the block gets one weighted sum,
   //   block_ij += sum_q w_q [c2 psi_i phi_j + c1 grad psi_i . (grad phi_j dX/ds)],  w_q = area weight / det.
-  void integrate_piece_batch(const MappedTriangle& mt, int kf, const Piece& piece, int degree) {
-    ++report_.pieces;
-    fluid_columns(kf);
+  void integrate_fan_batch(const MappedTriangle& mt, int kf, const Piece& piece, const Point* xi, int degree) {
     const auto& rule = mt.affine ? *affine_rule_ : triangle_rule(degree);
-    Point eta[Piece::kMaxVertices], xi[Piece::kMaxVertices];
+    Point eta[Piece::kMaxVertices];
     MapValue mv;
-    for (int v = 0; v < piece.n; ++v) {
-      eta[v] = fluid_poly_.to_reference(kf, piece.v[v]);
-      xi[v] = mt.affine ? mt.affine_reference(piece.v[v]) : mt.pull_back(piece.v[v], mv);
-    }
+    for (int v = 0; v < piece.n; ++v) eta[v] = fluid_poly_.to_reference(kf, piece.v[v]);
     const size_t n = static_cast<size_t>(piece.n - 2) * rule.size();
     if (weight_.size() < n) {
       weight_.resize(n);
@@ -431,7 +478,7 @@ class Worker {
     const int max_depth =
         std::min(12, std::max(0, static_cast<int>(std::ceil(std::log(1 / std::max(opt_.tol, 1e-300)) / std::log(4.0)))));
     const double solid_jacobian = area2(mt.solid[0], mt.solid[1], mt.solid[2]);  // ds = this * dxi
-    const auto& rule = triangle_rule(opt_.qforder >= 0 ? opt_.qforder : rule_degree(mt));
+    const auto& rule = triangle_rule(quadrature_degree(mt));
     double outside = 0;
     std::vector<Sub> stack{{{{0, 0}, {1, 0}, {0, 1}}, {mt.image[0], mt.image[1], mt.image[2]}, 0}};
     auto image_of = [&](Point xi) { return mt.affine ? from_reference(mt.image, xi) : mt.at(xi).x; };
@@ -559,6 +606,11 @@ class Worker {
   static constexpr int kLinearWidth = 48;
   bool linear_ = false;
   const std::vector<RulePoint>* affine_rule_ = nullptr;  // exact for the product of the bases
+  // Images of triangles whose nonlinearity is above this are split into parts (split.hpp) on which it is
+  // at most this: a rule of degree p + 20 there (rule_degree(double)).
+  static constexpr double kLeafNonlinearity = 0.25;
+  static constexpr int kMaxLeafDepth = 30, kMaxLeaves = 100000;
+  std::vector<MapPart> parts_;
   int fwidth_ = 0, swidth_ = 0;
   std::vector<std::vector<int>> pair_fluid_, pair_solid_;  // per pair: fitted-function index of each local dof
   std::vector<int> pair_source_;                  // per pair: the earlier pair it repeats, or -1
@@ -569,33 +621,6 @@ class Worker {
   std::vector<std::array<double, 4>> pjac_;
 };
 
-// Components named on one side must exist in that side's space.
-void check_components(const Basis& basis, const std::vector<int>& components, const std::string& side,
-                      const std::string& space) {
-  for (int c : components)
-    if (c < 0 || c >= basis.components())
-      throw Error(side + " component " + std::to_string(c) + " out of range (the " + space + " has " +
-                  std::to_string(basis.components()) + ")");
-}
-
-void check_options(const Basis& fluid_space, const Basis& multiplier, const CouplingOptions& opt) {
-  const auto& f = opt.fluid_components;
-  const auto& s = opt.solid_components;
-  if (f.size() != s.size())
-    throw Error("fluid and solid component lists differ in length (" + std::to_string(f.size()) + " and " +
-                std::to_string(s.size()) + ")");
-  if (f.empty()) throw Error("no components to couple");
-  check_components(fluid_space, f, "fluid", "fluid space");
-  check_components(multiplier, s, "solid", "multiplier space");
-  if (opt.gradient == CouplingOptions::Gradient::Listing && f.size() != 2)
-    throw Error("gradient=\"listing\" needs exactly two component pairs (a 2D vector field)");
-  if (!std::isfinite(opt.c1) || !std::isfinite(opt.c2)) throw Error("c1 and c2 must be finite");
-  if (opt.qforder > 60) throw Error("qforder above 60");
-  if (opt.method == CouplingOptions::Method::Quadrature && !(opt.tol > 0 && opt.tol < 1))
-    throw Error("tol must lie in (0, 1)");
-  if (opt.subdivide > 8) throw Error("subdivide above 8");
-}
-
 const Mesh& checked(const Mesh& mesh) {
   if (mesh.size() == 0) throw Error("empty fluid mesh");
   if (static_cast<int>(mesh.neighbours.size()) != mesh.size()) throw Error("fluid mesh adjacency not built");
@@ -605,10 +630,12 @@ const Mesh& checked(const Mesh& mesh) {
 }  // namespace
 
 FluidSide::FluidSide(Mesh mesh, const Basis& space, const std::vector<int>& components)
-    : space_(space, morton_order(checked(mesh))), mesh_(renumbered(mesh, space_.original())),
+    : scale_(scale_exponent(checked(mesh))), scaled_space_(space, scale_), space_(scaled_space_, morton_order(mesh)),
+      mesh_(renumbered(scaled(std::move(mesh), scale_), space_.original())),
       components_(components),
       degree_((check_components(space, components, "fluid", "fluid space"), polynomial_degree(space, components))), grid_(mesh_),
       basis_(space_, mesh_, degree_, components), dofs_(static_cast<size_t>(mesh_.size()) * space.local_dofs()) {
+  check_mesh_planar(mesh_, grid_, "the fluid mesh", &space_.original());
   for (int k = 0; k < mesh_.size(); ++k) space_.dofs(k, &dofs_[static_cast<size_t>(k) * space.local_dofs()]);
 }
 
@@ -662,7 +689,6 @@ CsrMatrix assemble_coupling(const FluidSide& side, const SolidSide& solid_side, 
   check_options(fluid_space, multiplier, opt);
   if (opt.fluid_components != side.components()) throw Error("the fluid side was prepared for other components");
   if (opt.solid_components != solid_side.components()) throw Error("the solid side was prepared for other components");
-  if (opt.parts < 1 || opt.part < 0 || opt.part >= opt.parts) throw Error("part must lie in [0, parts)");
   const int first = static_cast<int>(static_cast<long long>(solid.size()) * opt.part / opt.parts);
   const int last = static_cast<int>(static_cast<long long>(solid.size()) * (opt.part + 1) / opt.parts);
 
@@ -681,10 +707,13 @@ CsrMatrix assemble_coupling(const FluidSide& side, const SolidSide& solid_side, 
   // Threads only where no evaluation goes back to the caller's Basis or map (they need not be thread-safe).
   const bool parallel = fluid_poly.fitted() && solid_poly.fitted() && map.degree() >= 1;
   const int threads = parallel ? std::max(1, std::min(opt.threads, 64)) : 1;
+  // The map into the fluid side's scaled coordinates.
+  const ScaledMap scaled_map(map, side.scale());
+  const SolidMap& fluid_map = side.scale() == 0 ? map : scaled_map;
   std::vector<Worker> workers;
   workers.reserve(threads);
   for (int t = 0; t < threads; ++t)
-    workers.emplace_back(side, solid, multiplier, solid_poly, map, opt, total);
+    workers.emplace_back(side, solid, multiplier, solid_poly, fluid_map, opt, total);
   auto since = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   total.setup_seconds = since();
   // Contiguous shares of the ordered triangles, so that the sums come out in the same order for any thread
@@ -717,6 +746,8 @@ CsrMatrix assemble_coupling(const FluidSide& side, const SolidSide& solid_side, 
     total.solid_triangles += r.solid_triangles;
     total.pieces += r.pieces;
     total.points += r.points;
+    total.split += r.split;
+    total.parts += r.parts;
     total.affine += r.affine;
     total.straight += r.straight;
     total.curved += r.curved;
@@ -729,16 +760,24 @@ CsrMatrix assemble_coupling(const FluidSide& side, const SolidSide& solid_side, 
     }
     parts.push_back(std::move(w.triplets));
   }
-  if (!opt.drop_outside && total.outside_area > opt.outside_tol * total.image_area) {
+  // Compared in the scaled coordinates, reported in the caller's units.
+  const bool leaves = total.outside_area > opt.outside_tol * total.image_area;
+  const double relative = total.outside_area / total.image_area;
+  const double area_unit = std::ldexp(1.0, 2 * side.scale());
+  total.image_area *= area_unit;
+  total.outside_area *= area_unit;
+  total.worst_outside *= area_unit;
+  if (!opt.drop_outside && leaves) {
     char msg[400];
     std::snprintf(msg, sizeof msg,
                   "the mapped solid leaves the fluid mesh: area %.6g outside of %.6g (relative %.3g > %.3g); "
                   "worst is solid triangle %d with %.6g outside. Pass outside=\"drop\" to drop that part.",
-                  total.outside_area, total.image_area, total.outside_area / total.image_area, opt.outside_tol,
+                  total.outside_area, total.image_area, relative, opt.outside_tol,
                   total.worst_triangle, total.worst_outside);
     throw Error(msg);
   }
   CsrMatrix m = compress(multiplier.dof_count(), fluid_space.dof_count(), parts);
+  check_finite(m, opt);
   total.seconds = since();
   if (report) *report = total;
   return m;

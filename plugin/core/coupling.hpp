@@ -7,32 +7,17 @@
 #include "fluid_search.hpp"
 #include "map.hpp"
 #include "mesh.hpp"
+#include "options.hpp"
 #include "polynomial_basis.hpp"
+#include "scale.hpp"
 #include "sparse.hpp"
 
 namespace dlmfsi {
 
-struct CouplingOptions {
-  double c1 = 1, c2 = 1;
-  // Fluid component fluid_components[p] pairs with multiplier component solid_components[p].
-  std::vector<int> fluid_components{0}, solid_components{0};
-  enum class Method { Exact, Quadrature } method = Method::Exact;
-  // Chain: grad_s(u o X) = (grad_x u)(X) grad_s X, the derivative of the composed function.
-  // Listing: the printed listings' reversed product Grad(X,Y) * Grad(u,v) (needs exactly two pairs).
-  enum class Gradient { Chain, Listing } gradient = Gradient::Chain;
-  int qforder = -1;    // degree of the rule on pieces of non-affine images and on quadrature leaves; -1: auto
-  double tol = 1e-3;   // quadrature: leaves that straddle a fluid edge are split down to tol * triangle area
-  int subdivide = -1;  // curved images: split each solid triangle into 4^subdivide straight ones; -1: auto (2)
-  bool drop_outside = false;    // allow the mapped solid to leave the fluid mesh, dropping that part
-  double outside_tol = 1e-10;   // relative to the mapped solid area, before it is an error
-  // Assemble only share `part` of `parts` contiguous shares of the solid triangles (a distributed run sums
-  // the shares' matrices to the whole).
-  int part = 0, parts = 1;
-  int threads = 1;  // over solid triangles; used when the bases and the map are polynomial (fitted)
-};
-
 struct CouplingReport {
   long solid_triangles = 0, pieces = 0, points = 0, affine = 0, straight = 0, curved = 0;
+  // images split into straight parts (curved, or far from affine: split.hpp), and the parts
+  long split = 0, parts = 0;
   double image_area = 0, outside_area = 0;  // of the mapped solid, and the part outside the fluid mesh
   int worst_triangle = -1;                  // the solid triangle with most area outside
   double worst_outside = 0;
@@ -51,8 +36,10 @@ class FluidSide {
   FluidSide& operator=(const FluidSide&) = delete;
   // The fluid mesh with its triangles along a Morton curve (vertices in order of first use), and the space
   // on those triangles: triangle k here is the caller's triangle space().original()[k]. Nearby triangles
-  // lie close in memory, which keeps large fluid meshes in the caches.
+  // lie close in memory, which keeps large fluid meshes in the caches. The coordinates are the caller's
+  // times 2^-scale() (scale.hpp), the space's derivatives the caller's times 2^scale().
   const Mesh& mesh() const { return mesh_; }
+  int scale() const { return scale_; }
   const RenumberedBasis& space() const { return space_; }
   const std::vector<int>& components() const { return components_; }
   int degree() const { return degree_; }
@@ -62,6 +49,8 @@ class FluidSide {
   const int* dofs(int k) const { return &dofs_[static_cast<size_t>(k) * space_.local_dofs()]; }
 
  private:
+  int scale_;
+  ScaledBasis scaled_space_;
   RenumberedBasis space_;  // holds the order; before mesh_, which is built from it
   Mesh mesh_;
   std::vector<int> components_;
@@ -107,13 +96,18 @@ class SolidSide {
 //   int_T f(s) ds = int_{X(T)} f(X^-1(y)) |det grad X(X^-1(y))|^-1 dy,
 // with a rule exact for the product's degree when X is affine on T (exact to round-off), and with Newton
 // pull-back and a rule of degree qforder otherwise; the error then falls spectrally with qforder. By
-// default the degree is chosen per triangle from the map's nonlinearity there, for an error about 1e-12. Images with curved edges (P2 maps) are replaced by 4^subdivide straight
-// sub-triangles (the pull-back still uses the true map): only the band between the solid's curved
-// boundary and its chords is lost, an error falling 4x per level.
+// default the degree is chosen per triangle from the map's nonlinearity there, for an error about 1e-13,
+// and an image too far from affine is first split into parts on which the map is nearly affine
+// (split.hpp), up to the fold. Images with curved edges (P2 maps) are replaced by 4^subdivide straight
+// sub-triangles (the pull-back still uses the true map): the band between the curved edges and their
+// chords is lost, an error falling 4x per level.
 // Quadrature method: a composite rule on each solid triangle, refined where the images of a
 // sub-triangle's corners do not share one fluid triangle, down to tol of its area; the true map at every point.
-// Errors (Error): bad options or components, non-finite/inverted/flat map, a mapped solid outside the
-// fluid mesh by more than outside_tol (unless drop_outside).
+// The fluid coordinates are scaled by a power of two where their size calls for it (scale.hpp).
+// Errors (Error, naming the option or the triangle): bad options or components (validation.hpp), a fluid
+// mesh that overlaps itself or is not conforming, a non-finite, inverted, flat or folded map, solid
+// triangles beyond 1e-150..1e150 in size, a mapped solid outside the fluid mesh by more than outside_tol
+// (unless drop_outside), a matrix that overflows.
 // options.fluid_components and options.solid_components must be the sides' components.
 CsrMatrix assemble_coupling(const FluidSide& fluid, const SolidSide& solid, const SolidMap& map,
                             const CouplingOptions& options, CouplingReport* report = nullptr);

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "errors.hpp"
+#include "fold.hpp"
 #include "lattice.hpp"
 #include "polynomial_basis.hpp"
 #include "predicates.hpp"
@@ -187,6 +189,12 @@ void MappedTriangle::prepare(const Mesh& solid_mesh, const SolidMap& map, int kk
   const Point e1 = solid[1] - solid[0], e2 = solid[2] - solid[0];
   const double ds = cross(e1, e2);
   if (!(ds > 0)) throw Error(name(k) + " is degenerate or clockwise in the solid mesh");
+  // Products of the multiplier's gradients (1/h each) and of the area (h^2) stay normal numbers.
+  if (ds < 0x1p-1010 || ds > 0x1p1010) {
+    char s[160];
+    std::snprintf(s, sizeof s, " has area %.3g: solid triangles from about 1e-150 to 1e150 in size are supported", 0.5 * ds);
+    throw Error(name(k) + s);
+  }
   inv_[0][0] = e2.y / ds;
   inv_[0][1] = -e2.x / ds;
   inv_[1][0] = -e1.y / ds;
@@ -248,6 +256,12 @@ void MappedTriangle::prepare(const Mesh& solid_mesh, const SolidMap& map, int kk
     nonlinearity = 0;
   } else {
     classify();
+    if (!affine) {
+      check_fold();
+      const double inv_norm = std::max(std::fabs(image_inv_[0][0]) + std::fabs(image_inv_[0][1]),
+                                       std::fabs(image_inv_[1][0]) + std::fabs(image_inv_[1][1]));
+      xi_round_off_ = 8 * kEps * magnitude() * inv_norm;
+    }
   }
   if (affine) {
     // dX/ds = [image edges] [solid edges]^-1
@@ -267,14 +281,11 @@ void MappedTriangle::classify() {
   // Round-off of the fit and of the map's own evaluation scales with the coordinates, not the triangle.
   const double scale = std::fabs(image[1].x - image[0].x) + std::fabs(image[1].y - image[0].y) +
                        std::fabs(image[2].x - image[0].x) + std::fabs(image[2].y - image[0].y);
-  double magnitude = 0;
-  for (const Point& p : image) magnitude = std::max({magnitude, std::fabs(p.x), std::fabs(p.y)});
-  const double tol = 1e-12 * scale + 1e-14 * magnitude;
+  const double tol = 1e-12 * scale + 1e-14 * magnitude();
   const Point edge_points[6] = {{0.5, 0}, {0.5, 0.5}, {0, 0.5}, {0.25, 0}, {0.75, 0.25}, {0, 0.75}};
   const Point inner_points[3] = {{1.0 / 3, 1.0 / 3}, {0.2, 0.6}, {0.6, 0.15}};
   straight = true;
   affine = true;
-  nonlinearity = 0;
   for (int e = 0; e < 6; ++e) {
     const Point x = at(edge_points[e]).x;
     if (!finite(x)) throw Error("the map is NaN or Inf inside " + name(k));
@@ -285,18 +296,110 @@ void MappedTriangle::classify() {
     const Point ab = b - a;
     const double off = std::fabs(cross(ab, x - a)) / std::sqrt(ab.x * ab.x + ab.y * ab.y);
     if (off > tol) straight = false;
-    const double dev = std::fabs(x.x - line.x) + std::fabs(x.y - line.y);
-    if (dev > tol) affine = false;
-    nonlinearity = std::max(nonlinearity, dev / scale);
+    if (std::fabs(x.x - line.x) + std::fabs(x.y - line.y) > tol) affine = false;
   }
   for (const Point& p : inner_points) {
     const Point x = at(p).x;
     if (!finite(x)) throw Error("the map is NaN or Inf inside " + name(k));
     const Point line = from_reference(image, p);
-    const double dev = std::fabs(x.x - line.x) + std::fabs(x.y - line.y);
-    if (dev > tol) affine = false;
-    nonlinearity = std::max(nonlinearity, dev / scale);
+    if (std::fabs(x.x - line.x) + std::fabs(x.y - line.y) > tol) affine = false;
   }
+  nonlinearity = 0;
+  if (affine) return;
+  // The jacobian's variation at the corners and the sample points (its extremes: at the corners for a P2
+  // map, at the edge midpoints for a P1b bubble).
+  const Point corners[3] = {{0, 0}, {1, 0}, {0, 1}};
+  for (const Point* set : {corners, edge_points, inner_points}) {
+    const int n = set == edge_points ? 6 : 3;
+    for (int i = 0; i < n; ++i) nonlinearity = std::max(nonlinearity, jacobian_variation(set[i]));
+  }
+}
+
+double MappedTriangle::jacobian_variation(Point xi) const {
+  Point x, d1, d2;
+  reference_derivatives(xi, x, d1, d2);
+  // A^-1 [d1 d2] - I with A^-1 = image_inv_
+  const double m00 = image_inv_[0][0] * d1.x + image_inv_[0][1] * d1.y - 1;
+  const double m01 = image_inv_[0][0] * d2.x + image_inv_[0][1] * d2.y;
+  const double m10 = image_inv_[1][0] * d1.x + image_inv_[1][1] * d1.y;
+  const double m11 = image_inv_[1][0] * d2.x + image_inv_[1][1] * d2.y - 1;
+  const double v = std::max(std::fabs(m00) + std::fabs(m01), std::fabs(m10) + std::fabs(m11));
+  return std::isfinite(v) ? v : 1e300;
+}
+
+double MappedTriangle::nonlinearity_on(const Point ref[3], const Point img[3]) const {
+  // A maps the sub-triangle's reference edges to its image edges: A = F R^-1, F = [img1 - img0, img2 - img0],
+  // R = [ref1 - ref0, ref2 - ref0]; the variation is || A^-1 J - I || = || R F^-1 J - I ||.
+  const Point f1 = img[1] - img[0], f2 = img[2] - img[0], r1 = ref[1] - ref[0], r2 = ref[2] - ref[0];
+  const double df = cross(f1, f2);
+  if (!(df > 0)) return 1e300;
+  const double fi[2][2] = {{f2.y / df, -f2.x / df}, {-f1.y / df, f1.x / df}};
+  const double ai[2][2] = {{r1.x * fi[0][0] + r2.x * fi[1][0], r1.x * fi[0][1] + r2.x * fi[1][1]},
+                           {r1.y * fi[0][0] + r2.y * fi[1][0], r1.y * fi[0][1] + r2.y * fi[1][1]}};
+  const Point samples[7] = {ref[0], ref[1], ref[2], 0.5 * (ref[0] + ref[1]), 0.5 * (ref[1] + ref[2]),
+                            0.5 * (ref[2] + ref[0]), (1.0 / 3) * (ref[0] + ref[1] + ref[2])};
+  double worst = 0;
+  for (const Point& xi : samples) {
+    Point x, d1, d2;
+    reference_derivatives(xi, x, d1, d2);
+    const double m00 = ai[0][0] * d1.x + ai[0][1] * d1.y - 1, m01 = ai[0][0] * d2.x + ai[0][1] * d2.y;
+    const double m10 = ai[1][0] * d1.x + ai[1][1] * d1.y, m11 = ai[1][0] * d2.x + ai[1][1] * d2.y - 1;
+    const double v = std::max(std::fabs(m00) + std::fabs(m01), std::fabs(m10) + std::fabs(m11));
+    worst = std::max(worst, std::isfinite(v) ? v : 1e300);
+  }
+  return worst;
+}
+
+double MappedTriangle::magnitude() const {
+  double m = 0;
+  for (const Point& p : image) m = std::max({m, std::fabs(p.x), std::fabs(p.y)});
+  return m;
+}
+
+double MappedTriangle::area_round_off(long pieces) const {
+  double perimeter = 0;  // at most sqrt(2) times the perimeter: a bound suffices
+  for (int i = 0; i < 3; ++i) perimeter += std::fabs(image[(i + 1) % 3].x - image[i].x) + std::fabs(image[(i + 1) % 3].y - image[i].y);
+  return 8 * kEps * magnitude() * perimeter * static_cast<double>(pieces + 2);
+}
+
+void MappedTriangle::reference_derivatives(Point xi, Point& x, Point& d1, Point& d2) const {
+  if (degree_ >= 1) {
+    polynomial(xi, x, d1, d2);
+    return;
+  }
+  const MapValue v = map_->evaluate(k, xi);
+  const Point e1 = solid[1] - solid[0], e2 = solid[2] - solid[0];
+  x = v.x;
+  d1 = {v.jac[0][0] * e1.x + v.jac[0][1] * e1.y, v.jac[1][0] * e1.x + v.jac[1][1] * e1.y};
+  d2 = {v.jac[0][0] * e2.x + v.jac[0][1] * e2.y, v.jac[1][0] * e2.x + v.jac[1][1] * e2.y};
+}
+
+void MappedTriangle::check_fold() const {
+  auto det = [this](Point xi) {
+    Point x, d1, d2;
+    reference_derivatives(xi, x, d1, d2);
+    return cross(d1, d2);  // the sign of det dX/ds (the solid triangle is counter-clockwise)
+  };
+  Point where;
+  JacobianSign sign;
+  if (degree_ >= 1) {
+    sign = jacobian_sign(det, 2 * (degree_ - 1), 10, where);
+  } else {
+    // Not a polynomial: sampled on the degree-8 lattice.
+    sign = JacobianSign::Positive;
+    for (int p = 0; p < monomial_count(8) && sign == JacobianSign::Positive; ++p)
+      if (!(det(lattice_point(8, p)) > 0)) {
+        where = lattice_point(8, p);
+        sign = JacobianSign::Folds;
+      }
+  }
+  if (sign == JacobianSign::Positive) return;
+  char at[120];
+  std::snprintf(at, sizeof at, " at reference point (%.3g, %.3g)", where.x, where.y);
+  if (sign == JacobianSign::Folds)
+    throw Error("the map folds " + name(k) + " (its jacobian determinant is not positive" + at + ")");
+  throw Error("the map nearly folds " + name(k) + " (its jacobian determinant comes within about 1e-6 of zero" + at +
+              ")");
 }
 
 Point MappedTriangle::pull_back(Point y, MapValue& value) const {
@@ -331,22 +434,30 @@ Point MappedTriangle::pull_back(Point y, Point xi, MapValue& value) const {
     set_jacobian(d1, d2, value);
   };
   double previous = 1e300;
-  for (int it = 0; it < 40; ++it) {
+  Point last = xi, last_step{0, 0};  // the last iterate with a positive determinant, and the step from it
+  for (int it = 0; it < 80; ++it) {
     Point x, d1, d2;
     evaluate(xi, x, d1, d2);
     const double det = d1.x * d2.y - d2.x * d1.y;
-    if (!(det > 0)) throw Error("the map folds " + name(k) + " (jacobian determinant " + std::to_string(det) + ")");
+    if (!(det > 0)) {
+      if (it == 0) throw Error("the map folds " + name(k) + " (jacobian determinant " + std::to_string(det) + ")");
+      last_step = 0.5 * last_step;
+      xi = last + last_step;
+      continue;
+    }
     const Point r = y - x;
     const Point step{(d2.y * r.x - d2.x * r.y) / det, (d1.x * r.y - d1.y * r.x) / det};
+    last = xi;
+    last_step = step;
     xi = xi + step;
     const double size = std::fabs(step.x) + std::fabs(step.y);
     // Converged: the jacobian just computed is off by O(size) times the map's small nonlinearity.
-    if (size < 1e-12) {
+    if (size < std::max(1e-12, xi_round_off_)) {
       finish(x, d1, d2);
       return xi;
     }
     // Stalled at the round-off floor (quadratic convergence would have halved the step).
-    if (size < 1e-9 && size > 0.5 * previous) {
+    if (size < std::max(1e-9, 64 * xi_round_off_) && size > 0.5 * previous) {
       evaluate(xi, x, d1, d2);
       finish(x, d1, d2);
       return xi;

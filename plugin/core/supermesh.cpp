@@ -10,6 +10,7 @@
 #include "errors.hpp"
 #include "fluid_search.hpp"
 #include "predicates.hpp"
+#include "validation.hpp"
 
 namespace dlmfsi {
 
@@ -163,6 +164,8 @@ Supermesh build_supermesh(const Mesh& a, const Mesh& b) {
   std::vector<std::array<int, 3>> raw_triangles;
   std::vector<int> raw_a, raw_b;
   FluidGrid grid(b);
+  check_mesh_planar(a, FluidGrid(a), "supermesh: the first mesh");
+  check_mesh_planar(b, grid, "supermesh: the second mesh");
   FluidSearch search(grid);
   int hint = 0;
   for (int ka = 0; ka < a.size(); ++ka) {

@@ -2,6 +2,7 @@
 #pragma once
 #include "ff++.hpp"
 
+#include <cstdlib>
 #include <exception>
 #include <string>
 
@@ -27,20 +28,44 @@ inline dlmfsi::Mesh convert(const Fem2D::Mesh& th) {
   return m;
 }
 
-// Runs body() and turns any C++ exception into a FreeFEM ExecError, which a script's try/catch catches
-// (thrown outside the handler, so that FreeFEM's own exception is not caught here again).
+// The message of the last failed dlmfsi or dlmfsisupermesh call, "" after a call that succeeded: what the
+// script function dlmfsilasterror() returns, so that a script's catch block can check which error it got
+// (FreeFEM's catch (...) does not give the message).
+inline std::string& last_error() {
+  static std::string* message = new std::string;  // never destroyed: FreeFEM may call after static teardown
+  return *message;
+}
+
+// Records the failure and raises it as a FreeFEM ExecError, which a script's try/catch catches.
+[[noreturn]] inline void fail(const std::string& message) {
+  last_error() = message;
+  ExecError(message);
+  std::abort();  // not reached: ExecError throws
+}
+
+// The message of the exception being handled (within a catch block).
+inline std::string current_message() {
+  try {
+    throw;
+  } catch (const std::exception& e) {
+    return e.what();
+  } catch (...) {
+    return "dlmfsi: unknown C++ exception";
+  }
+}
+
+// Runs body() and turns any C++ exception into a FreeFEM ExecError (thrown outside the handler, so that
+// FreeFEM's own exception is not caught here again).
 template <class Body>
 AnyType guarded(Body&& body) {
   std::string failure;
+  last_error().clear();
   try {
     return body();
-  } catch (const std::exception& e) {
-    failure = e.what();
   } catch (...) {
-    failure = "dlmfsi: unknown C++ exception";
+    failure = current_message();
   }
-  ExecError(failure);
-  return Nothing;
+  fail(failure);
 }
 
 }  // namespace dlmfsi_ff

@@ -8,6 +8,7 @@
 #include "ff++.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <exception>
 #include <memory>
@@ -17,6 +18,8 @@
 #include "adapter.hpp"
 #include "coupling.hpp"
 #include "errors.hpp"
+#include "ranks.hpp"
+#include "validation.hpp"
 
 namespace {
 
@@ -200,16 +203,20 @@ class DlmfsiOp : public E_F0mps {
   std::string text(int i, Stack stack, const char* otherwise) const {
     return nargs[i] ? *GetAny<string*>((*nargs[i])(stack)) : std::string(otherwise);
   }
-  std::vector<int> integers(int i, const std::vector<Expression>& list, Stack stack) const {
-    std::vector<int> out;
-    for (Expression e : list) out.push_back(static_cast<int>(GetAny<long>((*e)(stack))));
+  // The entries of an integer list option as given (64-bit), and whether the option was given at all.
+  std::vector<long> integers(int i, const std::vector<Expression>& list, Stack stack) const {
+    std::vector<long> out;
+    for (Expression e : list) out.push_back(GetAny<long>((*e)(stack)));
     if (nargs[i]) {
       KN_<long> v = GetAny<KN_<long> >((*nargs[i])(stack));
-      for (int k = 0; k < v.N(); ++k) out.push_back(static_cast<int>(v[k]));
+      for (int k = 0; k < v.N(); ++k) out.push_back(v[k]);
     }
     return out;
   }
+  bool given(int i, const std::vector<Expression>& list) const { return nargs[i] || !list.empty(); }
+  std::vector<int> components(int i, const std::vector<Expression>& list, const char* side, Stack stack) const;
   dlmfsi::CouplingOptions options(Stack stack) const;
+  dlmfsi::CsrMatrix assemble(Stack stack, const dlmfsi::CouplingOptions& opt) const;
 };
 
 basicAC_F0::name_and_type DlmfsiOp::name_param[n_name_param] = {
@@ -219,21 +226,48 @@ basicAC_F0::name_and_type DlmfsiOp::name_param[n_name_param] = {
     {"outside", &typeid(string*)},  {"outsidetol", &typeid(double)}, {"threads", &typeid(long)},
     {"part", &typeid(KN_<long>)}};
 
+namespace {
+
+// An integer option read as 64 bits and range-checked before it becomes an int: 2^32 + 3 is refused, not
+// wrapped to 3.
+int checked_int(long v, long lo, long hi, const std::string& what) {
+  if (v < lo || v > hi)
+    throw dlmfsi::Error(what + "=" + std::to_string(v) + " out of range (" + std::to_string(lo) + " to " +
+                        std::to_string(hi) + ")");
+  return static_cast<int>(v);
+}
+
+}  // namespace
+
+std::vector<int> DlmfsiOp::components(int i, const std::vector<Expression>& list, const char* side, Stack stack) const {
+  if (!given(i, list)) return {0};
+  const std::vector<long> v = integers(i, list, stack);
+  if (v.empty()) throw dlmfsi::Error(std::string(side) + "= is empty: list the components to couple");
+  std::vector<int> out;
+  for (long c : v) {
+    if (c < INT_MIN || c > INT_MAX) throw dlmfsi::Error(std::string(side) + " component " + std::to_string(c) + " out of range");
+    out.push_back(static_cast<int>(c));
+  }
+  return out;
+}
+
 dlmfsi::CouplingOptions DlmfsiOp::options(Stack stack) const {
   using Options = dlmfsi::CouplingOptions;
   Options o;
   o.c1 = arg(kC1, stack, 1.0);
   o.c2 = arg(kC2, stack, 1.0);
-  o.fluid_components = integers(kFluid, fluid_list, stack);
-  o.solid_components = integers(kSolid, solid_list, stack);
-  if (o.fluid_components.empty()) o.fluid_components.push_back(0);
-  if (o.solid_components.empty()) o.solid_components.push_back(0);
-  const std::vector<int> part = integers(kPart, part_list, stack);
-  if (!part.empty()) {
-    if (part.size() != 2 || part[1] < 1 || part[0] < 0 || part[0] >= part[1])
-      throw dlmfsi::Error("part=[rank, size] needs 0 <= rank < size");
-    o.part = part[0];
-    o.parts = part[1];
+  o.fluid_components = components(kFluid, fluid_list, "fluid", stack);
+  o.solid_components = components(kSolid, solid_list, "solid", stack);
+  if (given(kPart, part_list)) {
+    const std::vector<long> part = integers(kPart, part_list, stack);
+    if (part.size() != 2 || part[1] < 1 || part[1] > INT_MAX || part[0] < 0 || part[0] >= part[1]) {
+      std::string given_part;
+      for (size_t k = 0; k < part.size(); ++k) given_part += (k ? ", " : "") + std::to_string(part[k]);
+      throw dlmfsi::Error("part=[" + given_part + "]: expected [rank, size] with 0 <= rank < size <= " +
+                          std::to_string(INT_MAX));
+    }
+    o.part = static_cast<int>(part[0]);
+    o.parts = static_cast<int>(part[1]);
   }
   const std::string method = text(kMethod, stack, "exact");
   if (method == "exact")
@@ -249,58 +283,81 @@ dlmfsi::CouplingOptions DlmfsiOp::options(Stack stack) const {
     o.gradient = Options::Gradient::Listing;
   else
     throw dlmfsi::Error("gradient=\"" + gradient + "\": expected \"chain\" or \"listing\"");
-  o.qforder = static_cast<int>(arg(kQforder, stack, -1L));
+  // Given values are checked before they become ints (-1: the automatic choice, as when not given).
+  if (nargs[kQforder]) {
+    const long q = arg(kQforder, stack, 0L);
+    dlmfsi::check_qforder(q);
+    o.qforder = static_cast<int>(q);
+  }
   o.tol = arg(kTol, stack, o.tol);
-  o.subdivide = static_cast<int>(arg(kSubdivide, stack, -1L));
+  if (nargs[kSubdivide]) {
+    const long l = arg(kSubdivide, stack, 0L);
+    dlmfsi::check_subdivide(l);
+    o.subdivide = static_cast<int>(l);
+  }
   const std::string outside = text(kOutside, stack, "error");
   if (outside == "drop")
     o.drop_outside = true;
   else if (outside != "error")
     throw dlmfsi::Error("outside=\"" + outside + "\": expected \"error\" or \"drop\"");
   o.outside_tol = arg(kOutsideTol, stack, o.outside_tol);
-  o.threads = static_cast<int>(arg(kThreads, stack, 1L));
+  o.threads = checked_int(arg(kThreads, stack, 1L), 1, INT_MAX, "threads");
   return o;
 }
 
+dlmfsi::CsrMatrix DlmfsiOp::assemble(Stack stack, const dlmfsi::CouplingOptions& opt) const {
+  FESpace* vf = **GetAny<pfes*>((*fluid_space)(stack));
+  FESpace* vs = **GetAny<pfes*>((*solid_space)(stack));
+  if (!vf || !vs) throw dlmfsi::Error("a space is not defined");
+  const pfer px = GetAny<pfer>((*map_x)(stack)), py = GetAny<pfer>((*map_y)(stack));
+  for (const pfer* p : {&px, &py})
+    if (!p->first || !p->first->x() || !(FESpace*)p->first->Vh)
+      throw dlmfsi::Error("the map [X, Y] holds a finite element function without values");
+  const FESpace& sx = *(FESpace*)px.first->Vh;
+  const FESpace& sy = *(FESpace*)py.first->Vh;
+  if (&sx.Th != &vs->Th || &sy.Th != &vs->Th)
+    throw dlmfsi::Error("the map [X, Y] is not defined on the mesh of the multiplier space Vs");
+  const KN<double>& cx = *px.first->x();
+  const KN<double>& cy = *py.first->x();
+
+  const dlmfsi::FluidSide& fluid = fluid_cache().get(*vf, opt.fluid_components);
+  SolidCache& cache = solid_cache();
+  const dlmfsi::SolidSide& solid = cache.get(*vs, opt.solid_components);
+  cache.trim_fits();
+  const SpaceBasis map_x_basis(sx), map_y_basis(sy);
+  const int degree = dlmfsi::FieldMap::fit_degree(map_x_basis, px.second, map_y_basis, py.second);
+  const dlmfsi::PolynomialBasis* fit_x = degree > 0 ? cache.map_fit(sx, px.second, degree) : nullptr;
+  const dlmfsi::PolynomialBasis* fit_y = degree > 0 ? cache.map_fit(sy, py.second, degree) : nullptr;
+  const dlmfsi::FieldMap map(solid.mesh(), map_x_basis, &cx[0], px.second, map_y_basis, &cy[0], py.second, fit_x,
+                             fit_y);
+  dlmfsi::CouplingReport report;
+  dlmfsi::CsrMatrix b = dlmfsi::assemble_coupling(fluid, solid, map, opt, &report);
+  if (verbosity > 1) cout << report.summary() << endl;
+  if (opt.drop_outside && report.outside_area > 0 && verbosity > 0)
+    cout << "dlmfsi: dropped area outside the fluid mesh " << report.outside_area << " (solid triangle "
+         << report.worst_triangle << " worst)" << endl;
+  return b;
+}
+
 AnyType DlmfsiOp::operator()(Stack stack) const {
-  return dlmfsi_ff::guarded([&]() -> AnyType {
-    const dlmfsi::CouplingOptions opt = options(stack);
-    FESpace* vf = **GetAny<pfes*>((*fluid_space)(stack));
-    FESpace* vs = **GetAny<pfes*>((*solid_space)(stack));
-    if (!vf || !vs) throw dlmfsi::Error("a space is not defined");
-    const pfer px = GetAny<pfer>((*map_x)(stack)), py = GetAny<pfer>((*map_y)(stack));
-    for (const pfer* p : {&px, &py})
-      if (!p->first || !p->first->x() || !(FESpace*)p->first->Vh)
-        throw dlmfsi::Error("the map [X, Y] holds a finite element function without values");
-    const FESpace& sx = *(FESpace*)px.first->Vh;
-    const FESpace& sy = *(FESpace*)py.first->Vh;
-    if (&sx.Th != &vs->Th || &sy.Th != &vs->Th)
-      throw dlmfsi::Error("the map [X, Y] is not defined on the mesh of the multiplier space Vs");
-    const KN<double>& cx = *px.first->x();
-    const KN<double>& cy = *py.first->x();
-
-    const dlmfsi::FluidSide& fluid = fluid_cache().get(*vf, opt.fluid_components);
-    SolidCache& cache = solid_cache();
-    const dlmfsi::SolidSide& solid = cache.get(*vs, opt.solid_components);
-    cache.trim_fits();
-    const SpaceBasis map_x_basis(sx), map_y_basis(sy);
-    const int degree = dlmfsi::FieldMap::fit_degree(map_x_basis, px.second, map_y_basis, py.second);
-    const dlmfsi::PolynomialBasis* fit_x = degree > 0 ? cache.map_fit(sx, px.second, degree) : nullptr;
-    const dlmfsi::PolynomialBasis* fit_y = degree > 0 ? cache.map_fit(sy, py.second, degree) : nullptr;
-    const dlmfsi::FieldMap map(solid.mesh(), map_x_basis, &cx[0], px.second, map_y_basis, &cy[0], py.second, fit_x,
-                               fit_y);
-    dlmfsi::CouplingReport report;
-    dlmfsi::CsrMatrix b = dlmfsi::assemble_coupling(fluid, solid, map, opt, &report);
-    if (verbosity > 1) cout << report.summary() << endl;
-    if (opt.drop_outside && report.outside_area > 0 && verbosity > 0)
-      cout << "dlmfsi: dropped area outside the fluid mesh " << report.outside_area << " (solid triangle "
-           << report.worst_triangle << " worst)" << endl;
-
-    // FreeFEM copies the compressed rows (set(..., tcsr=1)).
-    MatriceMorse<double>* pa = new MatriceMorse<double>(b.rows, b.cols, 0, 0);
-    pa->set(b.rows, b.cols, 0, b.value.size(), b.start.data(), b.column.data(), b.value.data(), 0, 1);
-    return SetAny<newpMatrice_Creuse<double> >(newpMatrice_Creuse<double>(stack, pa));
-  });
+  dlmfsi_ff::last_error().clear();
+  std::string failure;
+  dlmfsi::CouplingOptions opt;
+  dlmfsi::CsrMatrix b;
+  try {
+    opt = options(stack);
+    b = assemble(stack, opt);
+  } catch (...) {
+    failure = dlmfsi_ff::current_message();
+  }
+  // A share of a distributed assembly: every process raises the same error, or none does.
+  if (given(kPart, part_list) && dlmfsi_ff::distributed())
+    failure = dlmfsi_ff::agree(failure.empty() ? opt.part : -1, failure.empty() ? opt.parts : -1, failure);
+  if (!failure.empty()) dlmfsi_ff::fail(failure);
+  // FreeFEM copies the compressed rows (set(..., tcsr=1)).
+  MatriceMorse<double>* pa = new MatriceMorse<double>(b.rows, b.cols, 0, 0);
+  pa->set(b.rows, b.cols, 0, b.value.size(), b.start.data(), b.column.data(), b.value.data(), 0, 1);
+  return SetAny<newpMatrice_Creuse<double> >(newpMatrice_Creuse<double>(stack, pa));
 }
 
 // dlmfsi on spaces that are not 2D (3D volume, surface or curve meshes): a catchable error at run time
@@ -320,8 +377,21 @@ class NotTwoD : public E_F0mps {
   static ArrayOfaType typeargs() { return ArrayOfaType(atype<SpaceF>(), atype<SpaceS>(), atype<E_Array>()); }
   static E_F0* f(const basicAC_F0& args) { return new NotTwoD(args); }
   AnyType operator()(Stack) const {
-    ExecError("dlmfsi: the fluid and multiplier spaces must both be 2D (mesh) or both 3D (mesh3)");
-    return Nothing;
+    dlmfsi_ff::fail("dlmfsi: the fluid and multiplier spaces must be 2D (mesh) both, or 3D (mesh3) both");
+  }
+};
+
+// dlmfsilasterror(): the message of the last failed dlmfsi or dlmfsisupermesh call ("" after a success).
+class LastErrorOp : public E_F0mps {
+ public:
+  typedef string* Result;
+  explicit LastErrorOp(const basicAC_F0& args) { args.SetNameParam(); }
+  static ArrayOfaType typeargs() { return ArrayOfaType(); }
+  static E_F0* f(const basicAC_F0& args) { return new LastErrorOp(args); }
+  AnyType operator()(Stack stack) const {
+    string* s = newstring(dlmfsi_ff::last_error());
+    Add2StackOfPtr2Free(stack, s);
+    return SetAny<string*>(s);
   }
 };
 
@@ -337,6 +407,7 @@ static void Load_Init() {
   Global.Add("dlmfsi", "(", new OneOperatorCode<NotTwoD<pfes3*, pfes*> >);
   Global.Add("dlmfsi", "(", new OneOperatorCode<NotTwoD<pfesS*, pfesS*> >);
   Global.Add("dlmfsi", "(", new OneOperatorCode<NotTwoD<pfesL*, pfesL*> >);
+  Global.Add("dlmfsilasterror", "(", new OneOperatorCode<LastErrorOp>);
   dlmfsi_register_supermesh();
 }
 

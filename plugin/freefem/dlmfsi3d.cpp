@@ -265,16 +265,24 @@ dlmfsi::CouplingOptions Dlmfsi3Op::options(Stack stack) const {
     o.gradient = Options::Gradient::Listing;
   else
     throw dlmfsi::Error("gradient=\"" + gradient + "\": expected \"chain\" or \"listing\"");
-  o.qforder = static_cast<int>(arg(kQforder, stack, -1L));
+  // Given values are range-checked before they become ints.
+  const long qforder = arg(kQforder, stack, -1L), subdivide = arg(kSubdivide, stack, -1L), threads = arg(kThreads, stack, 1L);
+  if (qforder < -1 || qforder > 40)
+    throw dlmfsi::Error("qforder=" + std::to_string(qforder) + " out of range (0 to 40 in 3D, or -1 for the automatic choice)");
+  if (subdivide < -1 || subdivide > 4)
+    throw dlmfsi::Error("subdivide=" + std::to_string(subdivide) +
+                        " out of range (0 to 4 in 3D, or -1 for the default: 8^subdivide parts per curved tetrahedron)");
+  if (threads < 1 || threads > 1024) throw dlmfsi::Error("threads=" + std::to_string(threads) + " must lie in 1 .. 1024");
+  o.qforder = static_cast<int>(qforder);
   o.tol = arg(kTol, stack, o.tol);
-  o.subdivide = static_cast<int>(arg(kSubdivide, stack, -1L));
+  o.subdivide = static_cast<int>(subdivide);
   const std::string outside = text(kOutside, stack, "error");
   if (outside == "drop")
     o.drop_outside = true;
   else if (outside != "error")
     throw dlmfsi::Error("outside=\"" + outside + "\": expected \"error\" or \"drop\"");
   o.outside_tol = arg(kOutsideTol, stack, o.outside_tol);
-  o.threads = static_cast<int>(arg(kThreads, stack, 1L));
+  o.threads = static_cast<int>(threads);
   return o;
 }
 

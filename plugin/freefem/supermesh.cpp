@@ -81,7 +81,9 @@ void apply_map(const Fem2D::Mesh& th, dlmfsi::Mesh& a, const pfer& px, const pfe
   try {
     a.check();
   } catch (const dlmfsi::Error& e) {
-    throw dlmfsi::Error(std::string("supermesh: the map folds the first mesh (") + e.what() + ")");
+    std::string why = e.what();
+    if (why.rfind("dlmfsi: ", 0) == 0) why.erase(0, 8);
+    throw dlmfsi::Error("supermesh: the map folds the first mesh (" + why + ")");
   }
 }
 

@@ -1,0 +1,110 @@
+#include "fold.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "lattice.hpp"
+
+namespace dlmfsi {
+
+namespace {
+
+constexpr int kMaxDegree = 10;
+
+// Row-major inverse of C[p][m] = B_m(lattice point p) for the Bernstein polynomials of degree n,
+// B_(a,b) = n! / (a! b! (n-a-b)!) l0^(n-a-b) l1^a l2^b, indexed like the monomials (lattice.hpp):
+// Bernstein coefficients = inverse * values at the lattice points.
+const std::vector<double>& bernstein_inverse(int n) {
+  static const auto table = [] {
+    std::vector<std::vector<double>> inv(kMaxDegree + 1);
+    for (int deg = 0; deg <= kMaxDegree; ++deg) {
+      const int size = monomial_count(deg), w = 2 * size;
+      std::vector<double> a(static_cast<size_t>(size) * w, 0.0);  // [C | I], Gauss-Jordan with pivoting
+      auto factorial = [](int k) {
+        double f = 1;
+        for (int i = 2; i <= k; ++i) f *= i;
+        return f;
+      };
+      for (int p = 0; p < size; ++p) {
+        const Point x = deg == 0 ? Point{1.0 / 3, 1.0 / 3} : lattice_point(deg, p);
+        for (int m = 0; m < size; ++m) {
+          int ea, eb;
+          monomial_exponents(m, ea, eb);
+          const int e0 = deg - ea - eb;
+          a[p * w + m] = factorial(deg) / (factorial(ea) * factorial(eb) * factorial(e0)) *
+                         std::pow(1 - x.x - x.y, e0) * std::pow(x.x, ea) * std::pow(x.y, eb);
+        }
+        a[p * w + size + p] = 1;
+      }
+      for (int c = 0; c < size; ++c) {
+        int piv = c;
+        for (int r = c + 1; r < size; ++r)
+          if (std::fabs(a[r * w + c]) > std::fabs(a[piv * w + c])) piv = r;
+        for (int j = 0; j < w; ++j) std::swap(a[c * w + j], a[piv * w + j]);
+        const double diag = a[c * w + c];
+        for (int j = 0; j < w; ++j) a[c * w + j] /= diag;
+        for (int r = 0; r < size; ++r) {
+          const double f = a[r * w + c];
+          if (r != c && f != 0)
+            for (int j = 0; j < w; ++j) a[r * w + j] -= f * a[c * w + j];
+        }
+      }
+      inv[deg].resize(static_cast<size_t>(size) * size);
+      for (int r = 0; r < size; ++r)
+        for (int c = 0; c < size; ++c) inv[deg][r * size + c] = a[r * w + size + c];
+    }
+    return inv;
+  }();
+  return table[n];
+}
+
+}  // namespace
+
+JacobianSign jacobian_sign(const std::function<double(Point)>& det, int n, int max_depth, Point& where) {
+  n = std::max(0, std::min(n, kMaxDegree));
+  const int size = monomial_count(n);
+  const std::vector<double>& inv = bernstein_inverse(n);
+  struct Sub {
+    Point q[3];
+    int depth;
+  };
+  std::vector<Sub> stack{{{{0, 0}, {1, 0}, {0, 1}}, 0}};
+  double values[monomial_count(kMaxDegree)];
+  JacobianSign result = JacobianSign::Positive;
+  while (!stack.empty()) {
+    const Sub s = stack.back();
+    stack.pop_back();
+    double largest = 0;
+    for (int p = 0; p < size; ++p) {
+      const Point l = n == 0 ? Point{1.0 / 3, 1.0 / 3} : lattice_point(n, p);
+      const Point xi = s.q[0] + l.x * (s.q[1] - s.q[0]) + l.y * (s.q[2] - s.q[0]);
+      values[p] = det(xi);
+      if (!(values[p] > 0)) {
+        where = xi;
+        return JacobianSign::Folds;
+      }
+      largest = std::max(largest, values[p]);
+    }
+    double smallest = 1e300;
+    for (int m = 0; m < size; ++m) {
+      double c = 0;
+      for (int p = 0; p < size; ++p) c += inv[m * size + p] * values[p];
+      smallest = std::min(smallest, c);
+    }
+    if (smallest > 1e-12 * largest) continue;
+    if (s.depth >= max_depth) {
+      if (result == JacobianSign::Positive) where = (1.0 / 3) * (s.q[0] + s.q[1] + s.q[2]);
+      result = JacobianSign::NearlyFolds;  // keep looking for a certain fold elsewhere
+      continue;
+    }
+    const Point m01 = 0.5 * (s.q[0] + s.q[1]), m12 = 0.5 * (s.q[1] + s.q[2]), m20 = 0.5 * (s.q[2] + s.q[0]);
+    stack.push_back({{s.q[0], m01, m20}, s.depth + 1});
+    stack.push_back({{m01, s.q[1], m12}, s.depth + 1});
+    stack.push_back({{m20, m12, s.q[2]}, s.depth + 1});
+    stack.push_back({{m12, m20, m01}, s.depth + 1});
+  }
+  return result;
+}
+
+}  // namespace dlmfsi

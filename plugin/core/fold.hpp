@@ -1,0 +1,26 @@
+// Does a polynomial map fold a triangle? Its jacobian determinant is certified positive on the whole
+// reference triangle, not only at sample points.
+//
+// For a map of degree d, det dX/dxi is a polynomial of degree n = 2(d - 1) in the reference coordinates.
+// Written in the Bernstein basis of degree n on a sub-triangle (from its values at the sub-triangle's
+// degree-n lattice), its values there lie between the smallest and the largest coefficient, since the
+// Bernstein polynomials are non-negative and sum to one. So, on each sub-triangle:
+//  - every coefficient above 1e-12 of the largest value: det > 0 there;
+//  - a value at a lattice point <= 0: the map folds or flattens there;
+//  - otherwise split it into 4 (the coefficients converge to the values as h^2) and test the parts, down to
+//    max_depth levels; what is left undecided has det within about 4^-max_depth of zero relative to its
+//    scale, and is reported as a (near) fold.
+#pragma once
+#include <functional>
+
+#include "point.hpp"
+
+namespace dlmfsi {
+
+enum class JacobianSign { Positive, Folds, NearlyFolds };
+
+// det(xi): the jacobian determinant at a reference point, a polynomial of degree n (0 <= n <= 10).
+// where: a reference point at which det <= 0 (Folds) or the centre of an undecided sub-triangle.
+JacobianSign jacobian_sign(const std::function<double(Point)>& det, int n, int max_depth, Point& where);
+
+}  // namespace dlmfsi
