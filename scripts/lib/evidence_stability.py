@@ -27,7 +27,7 @@ R = 0.0625
 def _params(quick):
     if quick:
         return dict(fd_n=4, fd_T=0.2, rd_n=2, rd_T=0.03, rd_extra=["-n1d", "40", "-sub1d", "2", "-nr1d", "40"],
-                    fd_dts=["1", "5"], rd_dts=["1", "10"], ratios=["1", "4"], mus=["10", "1e5"], gaps=["0.25"],
+                    fd_dts=["1", "5"], rd_dts=["1", "10"], ratios=["1", "4"], mus=["1e5"], gaps=["0.25"],
                     timeout=60)
     return dict(fd_n=10, fd_T=0.7, rd_n=2, rd_T=0.25, rd_extra=[], fd_dts=["1", "2.5", "5"], rd_dts=["1", "3", "10"],
                 ratios=["0.125", "0.5", "1", "2", "8"], mus=["10", "1e3", "1e5"], gaps=["8", "2", "0.5", "0.1"],
