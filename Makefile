@@ -30,7 +30,7 @@ compare: deps build
 	@mkdir -p $(OUT)
 	DLMFSI_BUILD=$(abspath $(BUILD)) $(FF) edp/compare_coupling.edp -out $(OUT)
 	@if [ -f scripts/compare-scenes ]; then DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(OUT) scripts/compare-scenes; fi
-	@OUT=$(abspath $(OUT)) scripts/evidence-summary
+	@OUT=$(abspath $(OUT)) scripts/evidence --summary
 
 # Assembly speed over a sweep of sizes (built-in vs dlmfsi, threads, cost per piece, peak memory):
 # CSV + PNG under $(OUT)/bench. QUICK=1 for tiny sizes.
