@@ -19,9 +19,12 @@
 // solution broadcast from it. The analysis (fill-reducing ordering, symbolic factorization) and the
 // numerical factorization are kept per id: the next call with an id reuses the factorization when no
 // process's share changed, and the analysis when no process's share changed pattern (the sparsity
-// pattern, entries in the same order); the processes agree on that collectively. The ordering is METIS's
-// on the host (ICNTL(7) = 5, ICNTL(28) = 1): the same ordering for any number of processes, and no
-// threaded Scotch, so runs repeat bit for bit.
+// pattern, entries in the same order); the processes agree on that collectively. The ordering is MUMPS's
+// automatic choice, computed on the host (ICNTL(7) = 7, ICNTL(28) = 1). Debian's parallel MUMPS is built
+// without METIS and Scotch (a parallel analysis, ICNTL(28) = 2, fails with -38): on the scenes the choice
+// is PORD, which fills least of what there is (rotating disk n=10: 6.95e6 entries in the factors, AMF
+// 7.84e6, AMD 8.17e6), and on tiny systems an approximate minimum degree (PORD forced on a 2 x 2 system
+// exits the program). The same ordering for any number of processes, so runs repeat bit for bit.
 //
 // dlmfsisolve is collective over MPI_COMM_WORLD: every process calls it with the same id. Every error
 // (input that does not fit, on any process, or a failure of the engine) is raised on every process with
@@ -228,7 +231,7 @@ void set_controls(DMUMPS_STRUC_C& m) {
   m.icntl[2] = talk ? 6 : -1;   // global information (host)
   m.icntl[3] = talk ? 2 : 0;
   m.icntl[4] = 0;               // assembled matrix
-  m.icntl[6] = 5;               // METIS ordering
+  m.icntl[6] = 7;               // ordering: automatic (PORD or AMD here)
   m.icntl[17] = 3;              // distributed input: each process its own triplets
   m.icntl[19] = 0;              // dense right-hand side on the host
   m.icntl[20] = 0;              // solution gathered on the host
