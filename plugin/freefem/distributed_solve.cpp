@@ -1,0 +1,423 @@
+// The distributed solve (plugin dlmfsi_mumps, FreeFem++-mpi): each process hands its share of a sparse
+// matrix and of a right-hand side to parallel MUMPS, which factors the sum and returns the whole solution
+// on every process.
+//
+//   load "dlmfsi_mumps"
+//   real[int] x(n);
+//   int fresh = dlmfsisolve(A, b, x, id=0);   // A, b: this process's shares, global numbering
+//   real[int] s(12); dlmfsisolvestats(0, s);  // counts, times and memory of the kept factorization 0
+//   dlmfsisolvefree(0);                       // releases it
+//
+// The matrix solved is A = sum over processes of their A (entries at one position add up, so a process
+// gives only the entries it assembled), and the right-hand side b = sum of their b; x = A^-1 b, the same
+// on every process. A process that holds the whole matrix and the whole right-hand side may pass them as
+// they are, with the others passing empty shares, or every process may pass both whole: (P A) x = (P b).
+//
+// The engine does all the numerical work: distributed assembled input (ICNTL(18) = 3), general
+// unsymmetric matrix with threshold pivoting (SYM = 0: the saddle points of the scenes have a zero or
+// tiny diagonal block and an unsymmetric solid block), the right-hand side gathered on the host and the
+// solution broadcast from it. The analysis (fill-reducing ordering, symbolic factorization) and the
+// numerical factorization are kept per id: the next call with an id reuses the factorization when no
+// process's share changed, and the analysis when no process's share changed pattern (the sparsity
+// pattern, entries in the same order); the processes agree on that collectively. The ordering is MUMPS's
+// automatic choice, computed on the host (ICNTL(7) = 7, ICNTL(28) = 1). Debian's parallel MUMPS is built
+// without METIS and Scotch (a parallel analysis, ICNTL(28) = 2, fails with -38): on the scenes the choice
+// is PORD, which fills least of what there is (rotating disk n=10: 6.95e6 entries in the factors, AMF
+// 7.84e6, AMD 8.17e6), and on tiny systems an approximate minimum degree (PORD forced on a 2 x 2 system
+// exits the program). The same ordering for any number of processes, so runs repeat bit for bit.
+//
+// dlmfsisolve is collective over MPI_COMM_WORLD: every process calls it with the same id. Every error
+// (input that does not fit, on any process, or a failure of the engine) is raised on every process with
+// the same message, after the processes have agreed, so each one's try/catch runs and none waits.
+// dlmfsilasterror() returns it in the catch block.
+#define OMPI_SKIP_MPICXX 1
+#define MPICH_SKIP_MPICXX 1
+#include <mpi.h>
+
+#include <dmumps_c.h>
+
+#include "ff++.hpp"
+
+#include <time.h>
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "adapter.hpp"
+
+namespace {
+
+constexpr long kMaxId = 1000;          // ids 0 .. kMaxId - 1
+constexpr int kStats = 12;             // entries of dlmfsisolvestats
+constexpr int kMemoryRetries = 4;      // workspace estimate doubled at most this many times
+
+// An input that does not fit (the message says which); raised on every process as a FreeFEM ExecError.
+struct Failure : std::runtime_error {
+  explicit Failure(const std::string& what) : std::runtime_error("dlmfsisolve: " + what) {}
+};
+
+double cpu_seconds() {
+  timespec t;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+bool mpi_running() {
+  int on = 0, off = 0;
+  MPI_Initialized(&on);
+  MPI_Finalized(&off);
+  return on && !off;
+}
+
+// Wall and CPU time of one phase, added to the phase's totals.
+struct PhaseClock {
+  double wall0 = MPI_Wtime(), cpu0 = cpu_seconds();
+  void add_to(double& wall, double& cpu) const {
+    wall += MPI_Wtime() - wall0;
+    cpu += cpu_seconds() - cpu0;
+  }
+};
+
+// One kept factorization: the MUMPS instance and this process's share as MUMPS holds it (1-based rows and
+// columns; MUMPS reads the values again at each factorization, so they live here).
+struct Kept {
+  DMUMPS_STRUC_C m{};
+  bool live = false;     // initialized (JOB = -1) and not terminated
+  bool analysed = false, factored = false;
+  MUMPS_INT n = 0;
+  std::vector<MUMPS_INT> rows, cols;
+  std::vector<double> values;
+  // analyses, factorizations, solves; wall and CPU seconds of each phase (this process)
+  long count[3] = {0, 0, 0};
+  double wall[3] = {0, 0, 0}, cpu[3] = {0, 0, 0};
+  double memory_mb = 0;   // this process's MUMPS data during the last factorization, INFO(16)
+  double factor_entries = 0;  // entries in the factors, all processes (INFOG(29))
+  double delayed = 0;     // delayed pivots (INFOG(13)): how far threshold pivoting strayed from the ordering
+
+  ~Kept() { terminate(); }
+  void terminate() {
+    if (live && mpi_running()) {
+      m.job = -2;
+      dmumps_c(&m);
+    }
+    live = analysed = factored = false;
+  }
+};
+
+std::map<long, std::unique_ptr<Kept> >& kept() {
+  static auto* k = new std::map<long, std::unique_ptr<Kept> >;  // released by release_all, before MPI ends
+  return *k;
+}
+
+void release_all() {
+  for (auto& k : kept()) k.second->terminate();
+  kept().clear();
+}
+
+// MUMPS's error codes (INFOG(1) < 0) that a user can act on, in words.
+std::string engine_error(const DMUMPS_STRUC_C& m, const char* phase) {
+  const int code = m.infog[0], detail = m.infog[1];
+  std::string what;
+  switch (code) {
+    case -5: case -13: what = "not enough memory"; break;
+    case -6: what = "the matrix is structurally singular (rank " + std::to_string(detail) + ")"; break;
+    case -7: case -8: case -9: case -11: case -14: case -15: what = "the factorization's workspace is too small"; break;
+    case -10: what = "the matrix is numerically singular"; break;
+    case -16: what = "the size is out of range"; break;
+    default: what = "MUMPS error"; break;
+  }
+  return "dlmfsisolve: " + what + " (parallel MUMPS, " + phase + ": INFOG(1)=" + std::to_string(code) +
+         ", INFOG(2)=" + std::to_string(detail) + ")";
+}
+
+// Every process passes its failure ("" if none) and its size; returns "" when none failed and the sizes
+// agree, otherwise the same message on every process, naming the process.
+std::string agree(const std::string& failure, long n, long id) {
+  struct Report {
+    long n, id;
+    int failed;
+    char message[400];
+  };
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  Report mine{};
+  mine.n = n;
+  mine.id = id;
+  mine.failed = failure.empty() ? 0 : 1;
+  std::strncpy(mine.message, failure.c_str(), sizeof mine.message - 1);
+  std::vector<Report> all(size);
+  MPI_Allgather(&mine, sizeof mine, MPI_BYTE, all.data(), sizeof mine, MPI_BYTE, MPI_COMM_WORLD);
+  for (int r = 0; r < size; ++r)
+    if (all[r].failed) {
+      std::string m = all[r].message;
+      if (m.rfind("dlmfsisolve: ", 0) == 0) m.erase(0, 13);
+      return "dlmfsisolve: on process " + std::to_string(r) + " of " + std::to_string(size) + ": " + m;
+    }
+  for (int r = 1; r < size; ++r)
+    if (all[r].id != all[0].id)
+      return "dlmfsisolve: the processes passed different ids (process 0: id=" + std::to_string(all[0].id) +
+             ", process " + std::to_string(r) + ": id=" + std::to_string(all[r].id) + "); it is a collective call";
+  for (int r = 1; r < size; ++r)
+    if (all[r].n != all[0].n)
+      return "dlmfsisolve: the shares have different sizes (process 0: " + std::to_string(all[0].n) + ", process " +
+             std::to_string(r) + ": " + std::to_string(all[r].n) + "); every process passes the whole system's size";
+  return "";
+}
+
+// This process's share of A as 1-based triplets (a matrix stored as its lower half is unfolded); checks the
+// shapes and that every entry is finite.
+void read_share(Matrice_Creuse<double>* a, const KN_<double>& b, long& n, std::vector<MUMPS_INT>& rows,
+                std::vector<MUMPS_INT>& cols, std::vector<double>& values) {
+  if (!a) throw Failure("the matrix is not defined");
+  const long rn = a->N(), cn = a->M();
+  if (rn != cn)
+    throw Failure("the matrix is " + std::to_string(rn) + " x " + std::to_string(cn) + ", not square");
+  if (b.N() != rn)
+    throw Failure("the right-hand side has " + std::to_string(b.N()) + " entries for a matrix of size " +
+                        std::to_string(rn));
+  if (rn < 1) throw Failure("the matrix is empty (size 0); give each process's share its whole size (A.resize(n, n))");
+  if (rn > INT_MAX) throw Failure("size " + std::to_string(rn) + " beyond 32-bit indices");
+  n = rn;
+  for (long i = 0; i < b.N(); ++i)
+    if (!std::isfinite(b[i])) throw Failure("the right-hand side holds NaN or Inf (entry " + std::to_string(i) + ")");
+  rows.clear();
+  cols.clear();
+  values.clear();
+  HashMatrix<int, double>* h = a->pHM();
+  if (!h) {
+    if (a->A) throw Failure("the matrix is not a sparse matrix FreeFEM assembled (no entries to read)");
+    return;
+  }
+  const int base = h->fortran ? 1 : 0;
+  const size_t nnz = h->nnz;
+  rows.reserve(h->half ? 2 * nnz : nnz);
+  cols.reserve(rows.capacity());
+  values.reserve(rows.capacity());
+  for (size_t k = 0; k < nnz; ++k) {
+    const int i = h->i[k] - base, j = h->j[k] - base;
+    const double v = h->aij[k];
+    if (!std::isfinite(v))
+      throw Failure("the matrix holds NaN or Inf (row " + std::to_string(i) + ", column " + std::to_string(j) + ")");
+    rows.push_back(i + 1);
+    cols.push_back(j + 1);
+    values.push_back(v);
+    if (h->half && i != j) {
+      rows.push_back(j + 1);
+      cols.push_back(i + 1);
+      values.push_back(v);
+    }
+  }
+}
+
+// One MUMPS phase (JOB = job); the message of a failure, "" on success. INFOG is the same on every
+// process, so they all fail or succeed together.
+std::string run(Kept& k, int job, const char* phase) {
+  k.m.job = job;
+  dmumps_c(&k.m);
+  return k.m.infog[0] < 0 ? engine_error(k.m, phase) : "";
+}
+
+void set_controls(DMUMPS_STRUC_C& m) {
+  const bool talk = verbosity > 2;
+  m.icntl[0] = talk ? 6 : -1;   // error messages
+  m.icntl[1] = talk ? 6 : -1;   // diagnostics
+  m.icntl[2] = talk ? 6 : -1;   // global information (host)
+  m.icntl[3] = talk ? 2 : 0;
+  m.icntl[4] = 0;               // assembled matrix
+  m.icntl[6] = 7;               // ordering: automatic (PORD or AMD here)
+  m.icntl[17] = 3;              // distributed input: each process its own triplets
+  m.icntl[19] = 0;              // dense right-hand side on the host
+  m.icntl[20] = 0;              // solution gathered on the host
+  m.icntl[27] = 1;              // sequential analysis (the ordering above)
+}
+
+// Analysis (when asked), factorization (retried with a larger workspace when MUMPS's estimate was too
+// small, which delayed pivots of a saddle point can cause), then the solve of rhs (host) in place.
+std::string factor_and_solve(Kept& k, bool analyse, bool factor, std::vector<double>& rhs, int rank) {
+  std::string err;
+  if (analyse) {
+    k.analysed = k.factored = false;
+    k.m.n = k.n;
+    k.m.nnz_loc = static_cast<MUMPS_INT8>(k.rows.size());
+    k.m.irn_loc = k.rows.data();
+    k.m.jcn_loc = k.cols.data();
+    k.m.a_loc = k.values.data();
+    PhaseClock c;
+    err = run(k, 1, "analysis");
+    c.add_to(k.wall[0], k.cpu[0]);
+    if (!err.empty()) return err;
+    ++k.count[0];
+    k.analysed = true;
+    factor = true;
+  }
+  if (factor) {
+    k.factored = false;
+    k.m.a_loc = k.values.data();
+    PhaseClock c;
+    for (int attempt = 0;; ++attempt) {
+      err = run(k, 2, "factorization");
+      const int code = k.m.infog[0];
+      const bool workspace = code == -8 || code == -9 || code == -14 || code == -15;
+      if (!workspace || attempt == kMemoryRetries) break;
+      k.m.icntl[13] = std::max(2 * k.m.icntl[13], 40);   // ICNTL(14): percentage added to the estimate
+    }
+    c.add_to(k.wall[1], k.cpu[1]);
+    if (!err.empty()) return err;
+    ++k.count[1];
+    k.factored = true;
+    k.memory_mb = k.m.info[15];
+    k.factor_entries = k.m.infog[28] >= 0 ? k.m.infog[28] : -1e6 * k.m.infog[28];
+    k.delayed = k.m.infog[12];
+  }
+  PhaseClock c;
+  if (rank == 0) {
+    k.m.rhs = rhs.data();
+    k.m.nrhs = 1;
+    k.m.lrhs = k.n;
+  }
+  err = run(k, 3, "solve");
+  c.add_to(k.wall[2], k.cpu[2]);
+  if (err.empty()) ++k.count[2];
+  return err;
+}
+
+class SolveOp : public E_F0mps {
+ public:
+  typedef long Result;
+  static const int n_name_param = 1;
+  static basicAC_F0::name_and_type name_param[n_name_param];
+  Expression matrix, rhs, solution;
+  Expression nargs[n_name_param];
+
+  explicit SolveOp(const basicAC_F0& args) {
+    args.SetNameParam(n_name_param, name_param, nargs);
+    matrix = to<Matrice_Creuse<double>*>(args[0]);
+    rhs = to<KN_<double> >(args[1]);
+    solution = to<KN<double>*>(args[2]);
+  }
+  static ArrayOfaType typeargs() {
+    return ArrayOfaType(atype<Matrice_Creuse<double>*>(), atype<KN_<double> >(), atype<KN<double>*>());
+  }
+  static E_F0* f(const basicAC_F0& args) { return new SolveOp(args); }
+  AnyType operator()(Stack stack) const;
+};
+
+basicAC_F0::name_and_type SolveOp::name_param[n_name_param] = {{"id", &typeid(long)}};
+
+AnyType SolveOp::operator()(Stack stack) const {
+  dlmfsi_ff::last_error().clear();
+  if (!mpi_running())
+    dlmfsi_ff::fail("dlmfsisolve: MPI is not running: run the script with FreeFem++-mpi (NP=2 bin/ff script.edp)");
+  const long id = nargs[0] ? GetAny<long>((*nargs[0])(stack)) : 0L;
+  Matrice_Creuse<double>* a = GetAny<Matrice_Creuse<double>*>((*matrix)(stack));
+  const KN_<double> b = GetAny<KN_<double> >((*rhs)(stack));
+  KN<double>* x = GetAny<KN<double>*>((*solution)(stack));
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+
+  // This process's share and its checks; then all processes agree before anything collective.
+  std::string failure;
+  long n = -1;
+  std::vector<MUMPS_INT> rows, cols;
+  std::vector<double> values;
+  try {
+    if (id < 0 || id >= kMaxId) throw Failure("id=" + std::to_string(id) + " out of range (0 to " + std::to_string(kMaxId - 1) + ")");
+    if (!x) throw Failure("the solution array is not defined");
+    read_share(a, b, n, rows, cols, values);
+  } catch (...) {
+    failure = dlmfsi_ff::current_message();
+  }
+  failure = agree(failure, n, id);
+  if (!failure.empty()) dlmfsi_ff::fail(failure);
+
+  std::unique_ptr<Kept>& slot = kept()[id];
+  if (!slot) slot.reset(new Kept);
+  Kept& k = *slot;
+  // 2: a new analysis (first call, new size or new pattern somewhere), 1: a new factorization, 0: neither.
+  int change = 0;
+  if (!k.live || !k.factored || k.n != n || rows != k.rows || cols != k.cols)
+    change = 2;
+  else if (values != k.values)
+    change = 1;
+  int agreed = 0;
+  MPI_Allreduce(&change, &agreed, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  if (change) {
+    k.rows.swap(rows);
+    k.cols.swap(cols);
+    k.values.swap(values);
+  }
+  if (!k.live) {
+    k.m = DMUMPS_STRUC_C{};
+    k.m.par = 1;   // the host works too
+    k.m.sym = 0;
+    k.m.comm_fortran = static_cast<MUMPS_INT>(MPI_Comm_c2f(MPI_COMM_WORLD));
+    const std::string err = run(k, -1, "initialization");
+    if (!err.empty()) dlmfsi_ff::fail(err);
+    k.live = true;
+    set_controls(k.m);
+  }
+  k.n = static_cast<MUMPS_INT>(n);
+
+  // b = the sum of the shares, on the host.
+  std::vector<double> share(n), rhs(rank == 0 ? n : 0);
+  for (long i = 0; i < n; ++i) share[i] = b[i];   // b may be a strided view
+  MPI_Reduce(share.data(), rank == 0 ? rhs.data() : nullptr, static_cast<int>(n), MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
+  const std::string err = factor_and_solve(k, agreed == 2, agreed >= 1, rhs, rank);
+  if (!err.empty()) {
+    k.terminate();   // the next call starts again from the analysis
+    dlmfsi_ff::fail(err);
+  }
+  x->resize(n);
+  if (rank == 0) std::copy(rhs.begin(), rhs.end(), &(*x)[0]);
+  MPI_Bcast(&(*x)[0], static_cast<int>(n), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  return SetAny<long>(agreed >= 1 ? 1L : 0L);
+}
+
+// dlmfsisolvestats(id, s): s = [analyses, factorizations, solves, wall seconds of the analyses, the
+// factorizations, the solves, CPU seconds of the same three (this process), MUMPS memory of this process at
+// the last factorization (MB), entries in the factors (all processes), delayed pivots]. Local: no
+// communication. An id never used gives zeros.
+long solve_stats(long const& id, KN<double>* const& s) {
+  s->resize(kStats);
+  *s = 0.;
+  auto it = kept().find(id);
+  if (it == kept().end()) return 0;
+  const Kept& k = *it->second;
+  for (int p = 0; p < 3; ++p) {
+    (*s)[p] = k.count[p];
+    (*s)[3 + p] = k.wall[p];
+    (*s)[6 + p] = k.cpu[p];
+  }
+  (*s)[9] = k.memory_mb;
+  (*s)[10] = k.factor_entries;
+  (*s)[11] = k.delayed;
+  return 1;
+}
+
+// dlmfsisolvefree(id): releases the kept factorization (collective, as the solve).
+long solve_free(long const& id) {
+  if (!mpi_running()) return 0;
+  auto it = kept().find(id);
+  if (it == kept().end()) return 0;
+  it->second->terminate();
+  kept().erase(it);
+  return 1;
+}
+
+}  // namespace
+
+static void Load_Init() {
+  Global.Add("dlmfsisolve", "(", new OneOperatorCode<SolveOp>);
+  Global.Add("dlmfsisolvestats", "(", new OneOperator2_<long, long, KN<double>*>(solve_stats));
+  Global.Add("dlmfsisolvefree", "(", new OneOperator1_<long, long>(solve_free));
+  ff_atend(release_all);   // before FreeFem++-mpi finalizes MPI
+}
+
+LOADFUNC(Load_Init)
