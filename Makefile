@@ -39,9 +39,11 @@ bench: deps build
 	DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) QUICK=$(QUICK) scripts/bench
 
 # Accuracy against speed, the scenes' Pareto fronts and the stability map: CSV + PNG under
-# $(OUT)/evidence. QUICK=1 runs the same pipeline on tiny sizes.
+# $(OUT)/evidence; then the falling disk's convergence study and the FSI-3 studies (hours of CPU).
+# STAGES="coupling scenes stability" runs some stages (about 20 minutes); QUICK=1 the same pipeline on tiny sizes.
+STAGES ?=
 evidence: deps build
-	DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) QUICK=$(QUICK) scripts/evidence
+	DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) QUICK=$(QUICK) scripts/evidence $(STAGES)
 
 # AddressSanitizer + UndefinedBehaviorSanitizer build of the core, running the unit tests; the property
 # test with SANITIZE_FUZZ_PAIRS pairs (the unsanitized `make test` runs 1e6; 1e6 here takes about 2 min).
