@@ -4,12 +4,10 @@
 #include <vector>
 
 #include "basis.hpp"
-#include "fluid_search.hpp"
 #include "map.hpp"
 #include "mesh.hpp"
 #include "options.hpp"
-#include "polynomial_basis.hpp"
-#include "scale.hpp"
+#include "sides.hpp"
 #include "sparse.hpp"
 
 namespace dlmfsi {
@@ -24,67 +22,6 @@ struct CouplingReport {
   int fluid_degree = 0, solid_degree = 0, rule_degree = 0, curved_rule_degree = 0;  // curved: the highest used
   double seconds = 0, setup_seconds = 0, pieces_seconds = 0;  // total; bases and grid; clipping and integration
   std::string summary() const;
-};
-
-// The fluid side of the coupling: the mesh (with adjacency), its search grid and its basis fitted on the
-// coupled components. Built once and reused for every map while the fluid mesh and space stay the same
-// (a time loop on a fixed fluid mesh).
-class FluidSide {
- public:
-  FluidSide(Mesh mesh, const Basis& space, const std::vector<int>& components);
-  FluidSide(const FluidSide&) = delete;
-  FluidSide& operator=(const FluidSide&) = delete;
-  // The fluid mesh with its triangles along a Morton curve (vertices in order of first use), and the space
-  // on those triangles: triangle k here is the caller's triangle space().original()[k]. Nearby triangles
-  // lie close in memory, which keeps large fluid meshes in the caches. The coordinates are the caller's
-  // times 2^-scale() (scale.hpp), the space's derivatives the caller's times 2^scale().
-  const Mesh& mesh() const { return mesh_; }
-  int scale() const { return scale_; }
-  const RenumberedBasis& space() const { return space_; }
-  const std::vector<int>& components() const { return components_; }
-  int degree() const { return degree_; }
-  const FluidGrid& grid() const { return grid_; }
-  const PolynomialBasis& basis() const { return basis_; }
-  // The global dofs of triangle k (space().local_dofs() of them).
-  const int* dofs(int k) const { return &dofs_[static_cast<size_t>(k) * space_.local_dofs()]; }
-
- private:
-  int scale_;
-  ScaledBasis scaled_space_;
-  RenumberedBasis space_;  // holds the order; before mesh_, which is built from it
-  Mesh mesh_;
-  std::vector<int> components_;
-  int degree_;
-  FluidGrid grid_;
-  PolynomialBasis basis_;
-  std::vector<int> dofs_;
-};
-
-// The solid side: the solid mesh (reference configuration) and the multiplier basis fitted on the coupled
-// components. Built once and reused for every map while the solid mesh and the multiplier space stay the
-// same (a time loop: only the map moves).
-class SolidSide {
- public:
-  SolidSide(Mesh mesh, const Basis& multiplier, const std::vector<int>& components);
-  SolidSide(const SolidSide&) = delete;
-  SolidSide& operator=(const SolidSide&) = delete;
-  const Mesh& mesh() const { return mesh_; }
-  const Basis& space() const { return space_; }
-  const std::vector<int>& components() const { return components_; }
-  int degree() const { return degree_; }
-  const PolynomialBasis& basis() const { return basis_; }
-  // The solid triangles along a space-filling (Morton) curve through their centroids: consecutive
-  // triangles lie close together, so the search walks little from one to the next and the fluid data it
-  // touches stays in cache, whatever order the mesh generator left them in.
-  const std::vector<int>& order() const { return order_; }
-
- private:
-  Mesh mesh_;
-  const Basis& space_;
-  std::vector<int> components_;
-  int degree_;
-  PolynomialBasis basis_;
-  std::vector<int> order_;
 };
 
 // B_ij = int_{solid} c1 grad_s psi_i : grad_s (phi_j o X) + c2 psi_i . (phi_j o X) ds,
