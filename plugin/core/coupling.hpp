@@ -40,7 +40,9 @@ struct CouplingReport {
 // chords is lost, an error falling 4x per level.
 // Quadrature method: a composite rule on each solid triangle, refined where the images of a
 // sub-triangle's corners do not share one fluid triangle, down to tol of its area; the true map at every point.
+// (exact_method.hpp and quadrature_method.hpp; integrator.hpp: the integrators and how they are chosen.)
 // The fluid coordinates are scaled by a power of two where their size calls for it (scale.hpp).
+// The options are checked once per call, before anything is prepared.
 // Errors (Error, naming the option or the triangle): bad options or components (validation.hpp), a fluid
 // mesh that overlaps itself or is not conforming, a non-finite, inverted, flat or folded map, solid
 // triangles beyond 1e-150..1e150 in size, a mapped solid outside the fluid mesh by more than outside_tol

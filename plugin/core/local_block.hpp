@@ -1,0 +1,49 @@
+// The coupling's entries of one solid element while its pieces are integrated: one row per local
+// multiplier dof, one column per global fluid dof of the fluid elements met so far.
+#pragma once
+#include <cstddef>
+#include <vector>
+
+#include "sparse.hpp"
+
+namespace dlmfsi {
+
+class LocalBlock {
+ public:
+  // multiplier_dofs and fluid_dofs: local dofs per element of each space; used_rows and used_fluid_dofs:
+  // the local dofs that carry coupled components (the others are never read nor written).
+  LocalBlock(int multiplier_dofs, std::vector<int> used_rows, int fluid_dofs, std::vector<int> used_fluid_dofs);
+
+  // Starts the block of solid element k: its rows' global dofs from the multiplier space, no column yet.
+  template <class Space>
+  void start(const Space& multiplier, int k) {
+    multiplier.dofs(k, row_dofs_.data());
+    column_dofs_.clear();
+  }
+
+  // Enters a fluid element whose local dofs have the global dofs `dofs`: each used local dof is given the
+  // column of its global dof, a new zero column where the block has none yet (columns keep the order in
+  // which their dofs first came). column(j) then addresses local dof j's column.
+  void enter_fluid_element(const int* dofs);
+
+  // The entries of local fluid dof j's column (in the fluid element entered last), one per row.
+  double* column(int j) { return &entries_[static_cast<size_t>(column_of_[j]) * rows_]; }
+
+  // Appends (row dof, column dof, value) for the non-zero entries of the used rows, row by row and in
+  // column order. Entries never touched stay exactly zero (a multiplier component paired with another
+  // fluid component) and are left out.
+  void scatter(std::vector<Triplet>& out) const;
+
+  // Entries of one solid element for each used row and fluid column: an estimate of the triplets.
+  size_t used_entries_per_fluid_element() const { return used_rows_.size() * used_fluid_dofs_.size(); }
+
+ private:
+  int rows_;
+  std::vector<int> used_rows_, used_fluid_dofs_;
+  std::vector<int> row_dofs_;     // global multiplier dof of each row
+  std::vector<int> column_dofs_;  // global fluid dof of each column
+  std::vector<int> column_of_;    // per local fluid dof of the element entered last: its column
+  std::vector<double> entries_;   // column-major, rows_ per column (and spare room for more columns)
+};
+
+}  // namespace dlmfsi
