@@ -6,21 +6,46 @@
 
 namespace dlmfsi {
 
-int polynomial_degree(const Basis& basis, const std::vector<int>& components, int k) {
-  constexpr int kMaxDegree = 12, kSamples = kMaxDegree + 2;
-  const int width = basis.local_dofs() * basis.components() * 3;
-  // Segments chosen inside the reference triangle, away from its vertices and from symmetry lines.
-  const Point ends[3][2] = {{{0.05, 0.11}, {0.83, 0.07}}, {{0.13, 0.79}, {0.21, 0.04}}, {{0.71, 0.2}, {0.06, 0.37}}};
+namespace {
+
+// Segments chosen inside the reference element, away from its vertices and from symmetry lines.
+template <int D>
+struct ProbeSegments;
+template <>
+struct ProbeSegments<2> {
+  static constexpr int count = 3;
+  static Point at(int i, double t) {
+    const Point ends[3][2] = {{{0.05, 0.11}, {0.83, 0.07}}, {{0.13, 0.79}, {0.21, 0.04}}, {{0.71, 0.2}, {0.06, 0.37}}};
+    return {ends[i][0].x + t * (ends[i][1].x - ends[i][0].x), ends[i][0].y + t * (ends[i][1].y - ends[i][0].y)};
+  }
+};
+template <>
+struct ProbeSegments<3> {
+  static constexpr int count = 4;
+  static Point3 at(int i, double t) {
+    const Point3 ends[4][2] = {{{0.05, 0.11, 0.07}, {0.71, 0.07, 0.13}},
+                               {{0.13, 0.69, 0.04}, {0.21, 0.04, 0.62}},
+                               {{0.61, 0.2, 0.09}, {0.06, 0.17, 0.37}},
+                               {{0.03, 0.08, 0.77}, {0.33, 0.41, 0.05}}};
+    return ends[i][0] + t * (ends[i][1] - ends[i][0]);
+  }
+};
+
+}  // namespace
+
+template <int D>
+int polynomial_degree(const BasisOf<D>& basis, const std::vector<int>& components, int k) {
+  constexpr int kMaxDegree = 12, kSamples = kMaxDegree + 2, kSlots = D + 1;
+  const int width = basis.local_dofs() * basis.components() * kSlots;
   std::vector<double> samples(static_cast<size_t>(kSamples) * width);
   int degree = 0;
-  for (const auto& seg : ends) {
+  for (int seg = 0; seg < ProbeSegments<D>::count; ++seg) {
     for (int s = 0; s < kSamples; ++s) {
       const double t = static_cast<double>(s) / (kSamples - 1);
-      basis.evaluate(k, {seg[0].x + t * (seg[1].x - seg[0].x), seg[0].y + t * (seg[1].y - seg[0].y)},
-                     &samples[static_cast<size_t>(s) * width]);
+      basis.evaluate(k, ProbeSegments<D>::at(seg, t), &samples[static_cast<size_t>(s) * width]);
     }
-    for (int f = 0; f < width; f += 3) {  // values only
-      const int comp = (f / 3) % basis.components();
+    for (int f = 0; f < width; f += kSlots) {  // values only
+      const int comp = (f / kSlots) % basis.components();
       if (!components.empty() && std::find(components.begin(), components.end(), comp) == components.end()) continue;
       std::vector<double> d(kSamples);
       double scale = 0;
@@ -49,5 +74,8 @@ int polynomial_degree(const Basis& basis, const std::vector<int>& components, in
   }
   return degree;
 }
+
+template int polynomial_degree<2>(const BasisOf<2>&, const std::vector<int>&, int);
+template int polynomial_degree<3>(const BasisOf<3>&, const std::vector<int>&, int);
 
 }  // namespace dlmfsi

@@ -95,6 +95,116 @@ std::vector<RulePoint> make_rule(int degree) {
 
 }  // namespace
 
+namespace {
+
+// Eigenvalues d[0..n) and first components z[0..n) of the normalized eigenvectors of the symmetric
+// tridiagonal matrix with diagonal d and off-diagonal e[1..n) (e[0] unused): implicit QL with shifts.
+void tridiagonal_eigen(int n, std::vector<double>& d, std::vector<double> e, std::vector<double>& z) {
+  z.assign(n, 0.0);
+  z[0] = 1;  // the first row of the eigenvector matrix, rotated along with it
+  for (int i = 1; i < n; ++i) e[i - 1] = e[i];
+  e[n - 1] = 0;
+  for (int l = 0; l < n; ++l) {
+    for (int iter = 0; iter < 60; ++iter) {
+      int m = l;
+      for (; m < n - 1; ++m) {
+        const double dd = std::fabs(d[m]) + std::fabs(d[m + 1]);
+        if (std::fabs(e[m]) + dd == dd) break;
+      }
+      if (m == l) break;
+      double g = (d[l + 1] - d[l]) / (2 * e[l]);
+      double r = std::hypot(g, 1.0);
+      g = d[m] - d[l] + e[l] / (g + (g >= 0 ? r : -r));
+      double s = 1, c = 1, p = 0;
+      int i = m - 1;
+      for (; i >= l; --i) {
+        double f = s * e[i];
+        const double b = c * e[i];
+        r = std::hypot(f, g);
+        e[i + 1] = r;
+        if (r == 0) {
+          d[i + 1] -= p;
+          e[m] = 0;
+          break;
+        }
+        s = f / r;
+        c = g / r;
+        g = d[i + 1] - p;
+        r = (d[i] - g) * s + 2 * c * b;
+        p = s * r;
+        d[i + 1] = g + p;
+        g = c * r - b;
+        f = z[i + 1];
+        z[i + 1] = s * z[i] + c * f;
+        z[i] = c * z[i] - s * f;
+      }
+      if (r == 0 && i >= l) continue;
+      d[l] -= p;
+      e[l] = g;
+      e[m] = 0;
+    }
+  }
+}
+
+}  // namespace
+
+void gauss_jacobi(int n, int alpha, std::vector<double>& nodes, std::vector<double>& weights) {
+  // Jacobi polynomials P^(alpha, 0) on [-1, 1] (weight (1 - x)^alpha): recurrence coefficients
+  //   a_k = (beta^2 - alpha^2) / ((2k + s)(2k + s + 2)), s = alpha + beta,
+  //   b_k = sqrt(4k (k + alpha)(k + beta)(k + s) / ((2k + s)^2 (2k + s + 1)(2k + s - 1))),
+  // mu0 = 2^(alpha + 1) / (alpha + 1); then u = (1 + x) / 2 and w = mu0 z^2 / 2^(alpha + 1).
+  const double a = alpha, b = 0, s = a + b;
+  std::vector<double> d(n), e(n, 0.0), z;
+  for (int k = 0; k < n; ++k) {
+    const double t = 2 * k + s;
+    d[k] = k == 0 ? (b - a) / (s + 2) : (b * b - a * a) / (t * (t + 2));
+    if (k > 0) e[k] = std::sqrt(4.0 * k * (k + a) * (k + b) * (k + s) / (t * t * (t + 1) * (t - 1)));
+  }
+  tridiagonal_eigen(n, d, e, z);
+  nodes.resize(n);
+  weights.resize(n);
+  for (int i = 0; i < n; ++i) {
+    nodes[i] = 0.5 * (1 + d[i]);
+    weights[i] = z[i] * z[i] / (alpha + 1);
+  }
+}
+
+namespace {
+
+std::vector<RulePoint3> make_tetrahedron_rule(int degree) {
+  std::vector<RulePoint3> r;
+  if (degree <= 1) {
+    r.push_back({{0.25, 0.25, 0.25}, 1.0});
+  } else if (degree == 2) {
+    const double a = (5 - std::sqrt(5.0)) / 20, b = 1 - 3 * a;
+    for (Point3 p : {Point3{a, a, a}, Point3{b, a, a}, Point3{a, b, a}, Point3{a, a, b}}) r.push_back({p, 0.25});
+  } else {
+    const int n = (degree + 2) / 2;
+    std::vector<double> xu, wu, xv, wv, xw, ww;
+    gauss_jacobi(n, 2, xu, wu);
+    gauss_jacobi(n, 1, xv, wv);
+    gauss_jacobi(n, 0, xw, ww);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        for (int k = 0; k < n; ++k)
+          r.push_back({{xu[i], (1 - xu[i]) * xv[j], (1 - xu[i]) * (1 - xv[j]) * xw[k]}, 6 * wu[i] * wv[j] * ww[k]});
+  }
+  return r;
+}
+
+}  // namespace
+
+const std::vector<RulePoint3>& tetrahedron_rule(int degree) {
+  constexpr int kMax = 40;
+  if (degree < 0 || degree > kMax) throw Error("quadrature degree " + std::to_string(degree) + " outside [0, 40]");
+  static std::vector<RulePoint3> rules[kMax + 1];
+  static std::once_flag once;
+  std::call_once(once, [] {
+    for (int d = 0; d <= kMax; ++d) rules[d] = make_tetrahedron_rule(d);
+  });
+  return rules[degree];
+}
+
 const std::vector<RulePoint>& triangle_rule(int degree) {
   constexpr int kMax = 60;
   if (degree < 0 || degree > kMax) throw Error("quadrature degree " + std::to_string(degree) + " outside [0, 60]");

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "point.hpp"
+#include "point3.hpp"
 
 namespace dlmfsi {
 
@@ -21,5 +22,24 @@ const std::vector<RulePoint>& triangle_rule(int degree);
 
 // Gauss-Legendre nodes and weights on [0, 1], n points (exact for degree 2n-1).
 void gauss_legendre(int n, std::vector<double>& nodes, std::vector<double>& weights);
+
+// Gauss-Jacobi nodes and weights on [0, 1] for the weight (1 - u)^alpha, n points:
+// int_0^1 (1 - u)^alpha p(u) du = sum w_i p(u_i) for polynomials p of degree <= 2n - 1 (Golub-Welsch: the
+// eigenvalues and first eigenvector components of the Jacobi matrix of the recurrence).
+void gauss_jacobi(int n, int alpha, std::vector<double>& nodes, std::vector<double>& weights);
+
+// Quadrature rules on the reference tetrahedron {(0,0,0), (1,0,0), (0,1,0), (0,0,1)} (FreeFEM's).
+struct RulePoint3 {
+  Point3 xi;      // reference coordinates
+  double weight;  // weights sum to 1: the integral over a tetrahedron of volume V is V * sum(weight * f)
+};
+
+// A rule exact for polynomials of total degree <= degree (0 <= degree <= 40), all weights positive.
+// Degrees 0-1: the centroid; 2: the symmetric 4-point rule (barycentric (a, a, a, 1 - 3a), a = (5 - sqrt 5)
+// / 20); from 3 on a collapsed
+// (Duffy) product of Gauss-Jacobi rules (degree 3: 8 points),
+//   int_T f = int_0^1 int_0^1 int_0^1 f(u, (1-u) v, (1-u)(1-v) w) (1-u)^2 (1-v) dw dv du,
+// with ceil((degree + 1) / 2) points in each direction (weights (1-u)^2, (1-v) and 1 in the rules).
+const std::vector<RulePoint3>& tetrahedron_rule(int degree);
 
 }  // namespace dlmfsi

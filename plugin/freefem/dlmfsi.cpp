@@ -377,7 +377,7 @@ class NotTwoD : public E_F0mps {
   static ArrayOfaType typeargs() { return ArrayOfaType(atype<SpaceF>(), atype<SpaceS>(), atype<E_Array>()); }
   static E_F0* f(const basicAC_F0& args) { return new NotTwoD(args); }
   AnyType operator()(Stack) const {
-    dlmfsi_ff::fail("dlmfsi: the fluid and multiplier spaces must be 2D (fespace on a 2D mesh)");
+    dlmfsi_ff::fail("dlmfsi: the fluid and multiplier spaces must be 2D (mesh) both, or 3D (mesh3) both");
   }
 };
 
@@ -398,10 +398,11 @@ class LastErrorOp : public E_F0mps {
 }  // namespace
 
 void dlmfsi_register_supermesh();  // plugin/freefem/supermesh.cpp
+void dlmfsi_register_3d();         // plugin/freefem/dlmfsi3d.cpp
 
 static void Load_Init() {
   Global.Add("dlmfsi", "(", new OneOperatorCode<DlmfsiOp>);
-  Global.Add("dlmfsi", "(", new OneOperatorCode<NotTwoD<pfes3*, pfes3*> >);
+  dlmfsi_register_3d();
   Global.Add("dlmfsi", "(", new OneOperatorCode<NotTwoD<pfes*, pfes3*> >);
   Global.Add("dlmfsi", "(", new OneOperatorCode<NotTwoD<pfes3*, pfes*> >);
   Global.Add("dlmfsi", "(", new OneOperatorCode<NotTwoD<pfesS*, pfesS*> >);

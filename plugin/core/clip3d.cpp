@@ -1,0 +1,344 @@
+#include "clip3d.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <initializer_list>
+#include <utility>
+
+#include "predicates3d.hpp"
+
+namespace dlmfsi {
+
+namespace {
+
+// Edges of a tetrahedron by vertex pair (k < l), and the index of edge (k, l).
+constexpr int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+constexpr int kEdgeIndex[4][4] = {{-1, 0, 1, 2}, {0, -1, 3, 4}, {1, 3, -1, 5}, {2, 4, 5, -1}};
+// Face i of a tetrahedron (opposite vertex i): its vertices in increasing order.
+constexpr int kFace[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+
+// The planes (bits) of a tetrahedron's faces that contain its vertex i, or its edge (k, l).
+inline unsigned faces_at_vertex(int i) { return 0xFu & ~(1u << i); }
+inline unsigned faces_at_edge(int k, int l) { return 0xFu & ~(1u << k) & ~(1u << l); }
+
+inline void sort2(Point3& p, Point3& q) {
+  if (lex_less(q, p)) std::swap(p, q);
+}
+
+inline void sort3(Point3& x, Point3& y, Point3& z) {
+  sort2(x, y);
+  sort2(y, z);
+  sort2(x, y);
+}
+
+// Clamps p to the box of the points given (where the constructed point is known to lie).
+inline Point3 clamp_to(Point3 p, Point3 lo, Point3 hi) {
+  return {std::min(hi.x, std::max(lo.x, p.x)), std::min(hi.y, std::max(lo.y, p.y)), std::min(hi.z, std::max(lo.z, p.z))};
+}
+
+struct Box {
+  Point3 lo{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, hi{HUGE_VAL, HUGE_VAL, HUGE_VAL};
+  // intersect with the box of the points
+  void meet(std::initializer_list<Point3> points) {
+    Point3 l = *points.begin(), h = l;
+    for (Point3 p : points) {
+      l = {std::min(l.x, p.x), std::min(l.y, p.y), std::min(l.z, p.z)};
+      h = {std::max(h.x, p.x), std::max(h.y, p.y), std::max(h.z, p.z)};
+    }
+    lo = {std::max(lo.x, l.x), std::max(lo.y, l.y), std::max(lo.z, l.z)};
+    hi = {std::min(hi.x, h.x), std::min(hi.y, h.y), std::min(hi.z, h.z)};
+  }
+};
+
+struct Candidate {
+  Point3 p;
+  unsigned planes;
+};
+
+// Orders the vertices of face plane `plane` (indices in list[0..m)) around the face by floating-point
+// angles in the projection along the dominant axis of the normal: the guard for plane sets that do not
+// form one cycle (not seen for finite input).
+void order_by_angles(const Candidate* c, int* list, int m, Point3 normal) {
+  const double ax = std::fabs(normal.x), ay = std::fabs(normal.y), az = std::fabs(normal.z);
+  const int axis = ax >= ay && ax >= az ? 0 : (ay >= az ? 1 : 2);
+  auto uv = [axis](Point3 p) { return axis == 0 ? Point{p.y, p.z} : axis == 1 ? Point{p.z, p.x} : Point{p.x, p.y}; };
+  Point mean{0, 0};
+  for (int k = 0; k < m; ++k) mean = mean + (1.0 / m) * uv(c[list[k]].p);
+  std::sort(list, list + m, [&](int i, int j) {
+    const Point pi = uv(c[i].p) - mean, pj = uv(c[j].p) - mean;
+    return std::atan2(pi.y, pi.x) < std::atan2(pj.y, pj.x);
+  });
+}
+
+// The piece from its vertices and their plane sets: vertices sorted lexicographically, each face's cycle
+// from the shared planes. normal(plane) gives a normal of a plane for the guard.
+template <class Normal>
+Piece3 assemble(Candidate* c, int n, Normal&& normal) {
+  Piece3 out;
+  for (int k = 1; k < n; ++k)
+    for (int m = k; m > 0 && lex_less(c[m].p, c[m - 1].p); --m) std::swap(c[m], c[m - 1]);
+  out.n = std::min(n, Piece3::kMaxVertices);
+  for (int k = 0; k < out.n; ++k) {
+    out.v[k] = c[k].p;
+    out.planes[k] = static_cast<unsigned char>(c[k].planes);
+  }
+  int used = 0;
+  for (int plane = 0; plane < 8; ++plane) {
+    const unsigned bit = 1u << plane;
+    int list[Piece3::kMaxVertices], m = 0;
+    for (int k = 0; k < out.n; ++k)
+      if (c[k].planes & bit) list[m++] = k;
+    if (m < 3 || out.faces == Piece3::kMaxFaces || used + m > Piece3::kMaxFaceIndices) continue;
+    // The cycle: from the first vertex to its lower-numbered neighbour, then on to the neighbour that is
+    // not the previous vertex; every vertex must have exactly two neighbours.
+    auto neighbours = [&](int v, int* nb) {
+      int count = 0;
+      for (int k = 0; k < m; ++k)
+        if (list[k] != v && (c[list[k]].planes & c[v].planes & ~bit) != 0) {
+          if (count < 2) nb[count] = list[k];
+          ++count;
+        }
+      return count;
+    };
+    int cycle[Piece3::kMaxVertices], length = 0;
+    bool ok = true;
+    int previous = -1, current = list[0];
+    while (ok && length < m) {
+      cycle[length++] = current;
+      int nb[2];
+      if (neighbours(current, nb) != 2) {
+        ok = false;
+        break;
+      }
+      int next = previous < 0 ? std::min(nb[0], nb[1]) : (nb[0] == previous ? nb[1] : nb[0]);
+      if (previous >= 0 && nb[0] != previous && nb[1] != previous) ok = false;
+      previous = current;
+      current = next;
+    }
+    ok = ok && length == m && current == list[0];
+    if (!ok) {
+      out.exact = false;
+      order_by_angles(c, list, m, normal(plane));
+      std::copy(list, list + m, cycle);
+    }
+    for (int k = 0; k < m; ++k) out.face_index[used + k] = static_cast<unsigned char>(cycle[k]);
+    used += m;
+    out.face_start[++out.faces] = used;
+  }
+  return out;
+}
+
+Point3 face_normal(const Point3 t[4], int i) {
+  const Point3 p = t[kFace[i][0]], q = t[kFace[i][1]], r = t[kFace[i][2]];
+  return cross(q - p, r - p);
+}
+
+// 2^-e with 2^e about the largest |coordinate| of the points: scaling by it is exact (unless a coordinate
+// falls below 2^-1022 on the way) and keeps the determinants below representable at any scale (clamped
+// so that the factor itself is a normal double).
+inline double unit_scale(std::initializer_list<Point3> points) {
+  double m = 0;
+  for (Point3 v : points) m = std::max({m, std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+  int e;
+  std::frexp(m, &e);
+  return std::ldexp(1.0, -std::min(1000, std::max(-1000, e)));
+}
+
+// The point p + t (q - p) = q + (1 - t) (p - q), t = vp / (vp - vq), for the signed distances vp, vq (of
+// opposite signs) of p and q from the line or plane crossed: from the endpoint nearer to it.
+inline Point3 between(Point3 p, Point3 q, double vp, double vq) {
+  if (std::fabs(vp) <= std::fabs(vq)) {
+    const double t = std::min(1.0, std::max(0.0, vp / (vp - vq)));  // also maps NaN to 0
+    return p + t * (q - p);
+  }
+  const double t = std::min(1.0, std::max(0.0, vq / (vq - vp)));
+  return q + t * (p - q);
+}
+
+}  // namespace
+
+Point3 crossing(Point3 p, Point3 q, Point3 x, Point3 y, Point3 z) {
+  sort2(p, q);
+  sort3(x, y, z);
+  // The signed volumes vp = det [y - x, z - x, p - x] and vq have opposite signs, so vp - vq does not
+  // cancel; t = vp / (vp - vq) is accurate when both are. Each is evaluated in floating point with its
+  // error bound, exactly when the bounds exceed 2^-44 of |vp| + |vq| (an edge nearly parallel to the
+  // plane, a thin face), on coordinates scaled near 1 (exact) so that nothing underflows.
+  const double k = unit_scale({p, q, x, y, z});
+  const Point3 sp = k * p, sq = k * q, sx = k * x, sy = k * y, sz = k * z;
+  double bp, bq;
+  double vp = orient3d_estimate(sx, sy, sz, sp, bp), vq = orient3d_estimate(sx, sy, sz, sq, bq);
+  if (!(bp + bq <= 0x1p-44 * (std::fabs(vp) + std::fabs(vq)))) {
+    vp = orient3d_value(sx, sy, sz, sp);
+    vq = orient3d_value(sx, sy, sz, sq);
+  }
+  // The crossing lies on the segment and in the face: the boxes' intersection bounds it.
+  Box box;
+  box.meet({p, q});
+  box.meet({x, y, z});
+  return clamp_to(between(p, q, vp, vq), box.lo, box.hi);
+}
+
+Point3 crossing(Point3 p, Point3 q, Point3 r, Point3 s) {
+  sort2(p, q);
+  sort2(r, s);
+  if (lex_less(r, p) || (r == p && lex_less(s, q))) {
+    std::swap(p, r);
+    std::swap(q, s);
+  }
+  // In the common plane, seen along the axis where its normal is largest (any axis with a non-zero
+  // component keeps orientations; the largest keeps them best conditioned): t = op / (op - oq) with op,
+  // oq the orientations of p and q against the line r s (opposite signs), estimated or exact as above.
+  const double k = unit_scale({p, q, r, s});
+  const Point3 sp = k * p, sq = k * q, sr = k * r, ss = k * s;
+  const Point3 n1 = cross(sq - sp, sr - sp), n2 = cross(sq - sp, ss - sp);
+  const Point3 n = dot(n1, n1) >= dot(n2, n2) ? n1 : n2;
+  const double ax = std::fabs(n.x), ay = std::fabs(n.y), az = std::fabs(n.z);
+  const int axis = ax >= ay && ax >= az ? 0 : (ay >= az ? 1 : 2);
+  auto drop = [axis](Point3 v) { return axis == 0 ? Point{v.y, v.z} : axis == 1 ? Point{v.z, v.x} : Point{v.x, v.y}; };
+  double bp, bq;
+  double op = orient2d_estimate(drop(sr), drop(ss), drop(sp), bp), oq = orient2d_estimate(drop(sr), drop(ss), drop(sq), bq);
+  if (!(bp + bq <= 0x1p-44 * (std::fabs(op) + std::fabs(oq)))) {
+    op = orient2d_value(drop(sr), drop(ss), drop(sp));
+    oq = orient2d_value(drop(sr), drop(ss), drop(sq));
+  }
+  Box box;
+  box.meet({p, q});
+  box.meet({r, s});
+  return clamp_to(between(p, q, op, oq), box.lo, box.hi);
+}
+
+Piece3 clip(const Point3 a[4], const Point3 b[4]) {
+  unsigned beyond;
+  return clip(a, b, beyond);
+}
+
+Piece3 clip(const Point3 a[4], const Point3 b[4], unsigned& beyond) {
+  TetFaces a_faces;
+  a_faces.set(a);
+  return clip(a, a_faces, b, beyond);
+}
+
+Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsigned& beyond) {
+  beyond = 0;
+  TetFaces b_faces;
+  b_faces.set(b);
+  auto normal = [&](int plane) { return plane < 4 ? face_normal(a, plane) : face_normal(b, plane - 4); };
+  Candidate c[32];
+  int n = 0;
+  // A whole tetrahedron: its own vertices, face j the other three (no sorting, no walk).
+  auto whole = [](const Point3 t[4], int shift) {
+    Piece3 out;
+    out.n = 4;
+    out.faces = 4;
+    for (int i = 0; i < 4; ++i) {
+      out.v[i] = t[i];
+      out.planes[i] = static_cast<unsigned char>(faces_at_vertex(i) << shift);
+      for (int k = 0; k < 3; ++k) out.face_index[3 * i + k] = static_cast<unsigned char>(kFace[i][k]);
+      out.face_start[i + 1] = 3 * (i + 1);
+    }
+    return out;
+  };
+  // sb[i][j]: side of a[i] with respect to b's face j; sa[j][i] likewise.
+  int sb[4][4], sa[4][4];
+  for (int j = 0; j < 4; ++j) {
+    bool separates = true;
+    for (int i = 0; i < 4; ++i) {
+      sb[i][j] = b_faces.side(j, a[i]);
+      if (sb[i][j] > 0) separates = false;
+      if (sb[i][j] < 0) beyond |= 1u << j;
+    }
+    if (separates) return Piece3{};
+  }
+  if (beyond == 0) return whole(a, 0);  // a in closed b
+  bool b_inside = true;
+  for (int i = 0; i < 4; ++i) {
+    bool separates = true;
+    for (int j = 0; j < 4; ++j) {
+      sa[j][i] = a_faces.side(i, b[j]);
+      if (sa[j][i] > 0) separates = false;
+      if (sa[j][i] < 0) b_inside = false;
+    }
+    if (separates) return Piece3{};
+  }
+  if (b_inside) return whole(b, 4);
+
+  auto add = [&](Point3 p, unsigned planes) {
+    if (n < 32) c[n++] = {p, planes};
+  };
+  // Vertices of a in closed b: on a's three faces at the vertex and on b's faces where the side is 0.
+  for (int i = 0; i < 4; ++i) {
+    if (sb[i][0] < 0 || sb[i][1] < 0 || sb[i][2] < 0 || sb[i][3] < 0) continue;
+    unsigned planes = faces_at_vertex(i);
+    for (int j = 0; j < 4; ++j)
+      if (sb[i][j] == 0) planes |= 1u << (4 + j);
+    add(a[i], planes);
+  }
+  // Vertices of b in closed a that are not vertices of a.
+  for (int j = 0; j < 4; ++j) {
+    if (sa[j][0] < 0 || sa[j][1] < 0 || sa[j][2] < 0 || sa[j][3] < 0) continue;
+    if (b[j] == a[0] || b[j] == a[1] || b[j] == a[2] || b[j] == a[3]) continue;
+    unsigned planes = faces_at_vertex(j) << 4;
+    for (int i = 0; i < 4; ++i)
+      if (sa[j][i] == 0) planes |= 1u << i;
+    add(b[j], planes);
+  }
+  // The orientations of a's edge lines against b's: edge(ea) of a, edge(eb) of b,
+  // orient3d(a[p], a[q], b[x], b[y]) = orient3d(b[x], b[y], a[p], a[q]) (an even permutation).
+  signed char table[6][6];
+  for (auto& row : table)
+    for (auto& t : row) t = 2;  // not computed yet
+  auto orientation = [&](int ea, int eb) {
+    signed char& t = table[ea][eb];
+    if (t == 2) t = static_cast<signed char>(orient3d(a[kEdge[ea][0]], a[kEdge[ea][1]], b[kEdge[eb][0]], b[kEdge[eb][1]]));
+    return static_cast<int>(t);
+  };
+  // An edge crossing the plane of a face (k, l, m) of the other tetrahedron strictly: the signs of its
+  // line against the face's edges (k, l), (l, m), (m, k) say where it passes: all equal, through the open
+  // face; one zero and two equal, through the open edge of the zero; two zeros, through a vertex (found
+  // above as a vertex in the other tetrahedron).
+  unsigned long long edge_pairs = 0;  // the edge-edge crossings already added, bit 6 * ea + eb
+  for (int ea = 0; ea < 6; ++ea) {
+    const int p = kEdge[ea][0], q = kEdge[ea][1];
+    for (int j = 0; j < 4; ++j) {
+      if (sb[p][j] * sb[q][j] >= 0) continue;
+      const int k = kFace[j][0], l = kFace[j][1], m = kFace[j][2];
+      const int eb[3] = {kEdgeIndex[k][l], kEdgeIndex[l][m], kEdgeIndex[k][m]};
+      const int t[3] = {orientation(ea, eb[0]), orientation(ea, eb[1]), -orientation(ea, eb[2])};
+      if (t[0] == t[1] && t[1] == t[2]) {
+        if (t[0] != 0) add(crossing(a[p], a[q], b[k], b[l], b[m]), faces_at_edge(p, q) | 1u << (4 + j));
+        continue;
+      }
+      for (int z = 0; z < 3; ++z) {
+        if (t[z] != 0 || t[(z + 1) % 3] != t[(z + 2) % 3] || t[(z + 1) % 3] == 0) continue;
+        const unsigned long long bit = 1ull << (6 * ea + eb[z]);
+        if (edge_pairs & bit) continue;
+        edge_pairs |= bit;
+        const int x = kEdge[eb[z]][0], y = kEdge[eb[z]][1];
+        add(crossing(a[p], a[q], b[x], b[y]), faces_at_edge(p, q) | faces_at_edge(x, y) << 4);
+      }
+    }
+  }
+  // b's edges through a's open faces (the edge-edge crossings were all found from a's side: an edge of a
+  // crossing an open edge of b strictly crosses the plane of a face of b at that edge).
+  for (int eb = 0; eb < 6; ++eb) {
+    const int x = kEdge[eb][0], y = kEdge[eb][1];
+    for (int i = 0; i < 4; ++i) {
+      if (sa[x][i] * sa[y][i] >= 0) continue;
+      const int k = kFace[i][0], l = kFace[i][1], m = kFace[i][2];
+      const int t0 = orientation(kEdgeIndex[k][l], eb), t1 = orientation(kEdgeIndex[l][m], eb),
+                t2 = -orientation(kEdgeIndex[k][m], eb);
+      if (t0 == t1 && t1 == t2 && t0 != 0)
+        add(crossing(b[x], b[y], a[k], a[l], a[m]), faces_at_edge(x, y) << 4 | 1u << i);
+    }
+  }
+  if (n < 4) return Piece3{};  // the interiors do not meet (touching along a segment or at a point)
+  // A face plane of b that is a face plane of a too (same side: opposite sides separate) keeps a's bit.
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i)
+      if (sa[kFace[j][0]][i] == 0 && sa[kFace[j][1]][i] == 0 && sa[kFace[j][2]][i] == 0)
+        for (int k = 0; k < n; ++k) c[k].planes &= ~(1u << (4 + j));
+  return assemble(c, n, normal);
+}
+
+}  // namespace dlmfsi

@@ -1,0 +1,67 @@
+// Fast evaluation of a 3D Basis (the counterpart of polynomial_basis.hpp): on each tetrahedron the basis
+// functions are polynomials in the reference coordinates, fitted on the degree-d lattice and evaluated by
+// monomials, with physical derivatives through the tetrahedron's affine map. Affine-equivalent elements
+// (P0, P1, P1b, P2, ... on every tetrahedron) share one fit: each element is checked against it with a
+// single basis evaluation at a generic point, and fitted on its own only where it differs.
+#pragma once
+#include <cstddef>
+#include <vector>
+
+#include "basis.hpp"
+#include "lattice3d.hpp"
+#include "mesh3d.hpp"
+
+namespace dlmfsi {
+
+class PolynomialBasis3 {
+ public:
+  // degree: the basis degree on the listed components (polynomial_degree), or -1 to evaluate the basis
+  // itself at every point. Only the listed components, on the local dofs that carry them, are computed.
+  // If the fit of the first element misses the basis at two points off the lattice (not a polynomial of
+  // that degree), every evaluation goes to the basis itself.
+  PolynomialBasis3(const Basis3& basis, const Mesh3& mesh, int degree, const std::vector<int>& components);
+
+  bool fitted() const { return degree_ >= 0; }
+  int degree() const { return degree_; }
+  // The fitted functions, as dof * components + component.
+  const std::vector<int>& functions() const { return functions_; }
+
+  // The fitted functions at n points of element k (fitted() only): value[f * n + p] for the f-th of
+  // functions() at point p, and when gradient is not null the physical first derivatives
+  // gradient[(3 f + i) * n + p], i = x, y, z. Safe to call from several threads.
+  void evaluate_points(int k, const Point3* xi, int n, double* value, double* gradient) const;
+
+  // Any basis (fitted or not): Basis3::evaluate's layout for the listed components.
+  void evaluate(int k, Point3 xi, double* out) const;
+
+  // Degree 0 or 1 only: the fitted functions' values at xi and their (constant) physical gradients.
+  void evaluate_affine(int k, Point3 xi, double* value, double* gradient) const;
+
+  // The reference coordinates of x in element k (the inverse of the element's affine map).
+  Point3 to_reference(int k, Point3 x) const {
+    const double* j = &inverse_jacobian_[9 * static_cast<size_t>(k)];
+    const Point3 d = x - mesh_.vertex(k, 0);
+    return {j[0] * d.x + j[1] * d.y + j[2] * d.z, j[3] * d.x + j[4] * d.y + j[5] * d.z, j[6] * d.x + j[7] * d.y + j[8] * d.z};
+  }
+  // d xi_i / d x_j of element k, row-major.
+  const double* inverse_jacobian(int k) const { return &inverse_jacobian_[9 * static_cast<size_t>(k)]; }
+  // Does element k use the shared fit (that of element 0)?
+  bool shared(int k) const { return slot_[k] < 0; }
+  // Monomial coefficients (monomial_count3(degree) per function, in functions() order) on element k.
+  const double* coefficients(int k) const { return slot_[k] < 0 ? reference_.data() : &own_[slot_[k]]; }
+
+ private:
+  void fit(int k, double* coefficients);
+  void check(int k);
+  const Basis3& basis_;
+  const Mesh3& mesh_;
+  int degree_, nm_ = 0, nc_;
+  std::vector<int> functions_;
+  std::vector<double> reference_;  // the shared fit
+  std::vector<int> slot_;          // per element: -1 shared fit, else offset in own_
+  std::vector<double> own_;        // element fits that differ from the shared one
+  std::vector<double> inverse_jacobian_;  // per element: d xi / d x, 9 entries
+  std::vector<double> sample_, check_;
+};
+
+}  // namespace dlmfsi

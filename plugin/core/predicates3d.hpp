@@ -1,0 +1,110 @@
+// Exact geometric predicates in space.
+#pragma once
+#include <algorithm>
+#include <cmath>
+
+#include "point3.hpp"
+#include "predicates.hpp"
+
+namespace dlmfsi {
+
+// Sign of det [b - a, c - a, d - a]: +1 when (a, b, c, d) is a positively oriented tetrahedron (d on the
+// side of the plane through a, b, c toward which (b - a) x (c - a) points: a, b, c turn counter-clockwise
+// seen from d), -1 for the other side, 0 exactly when the four points are coplanar.
+// Exact for all finite inputs. Degenerate cases that give 0, exactly: two or more coincident points, three
+// collinear points, four coplanar points (a point on a face plane, an edge crossing an edge, coplanar
+// faces); a point perturbed off them by one ulp gets the sign of the perturbation, never 0. Coordinates may
+// range from subnormals to the largest doubles, mixed within one call. A floating-point filter decides
+// the common case; otherwise the determinant of the exact differences (when the nine subtractions are
+// exact) or of the 24 triple products of the coordinates is evaluated exactly (exact_sign.hpp). Inputs
+// that are not finite give 0 (outside the contract).
+inline int orient3d(Point3 a, Point3 b, Point3 c, Point3 d);
+
+// The same determinant evaluated exactly, without the floating-point filter.
+int orient3d_exact(Point3 a, Point3 b, Point3 c, Point3 d);
+
+// The determinant det [b - a, c - a, d - a] in floating point, and a bound on its error: Shewchuk's
+// o3derrboundA = (7 + 56 eps) eps (eps = 2^-53) times the permanent, plus 2^-1068 (1 + max |b - a, c - a,
+// d - a|) for products that underflow (a product of two differences below 2^-1022 loses at most 2^-1075
+// before it is multiplied by the third). On overflow the bound is inf or NaN.
+inline double orient3d_estimate(Point3 a, Point3 b, Point3 c, Point3 d, double& bound) {
+  const Point3 u = b - a, v = c - a, w = d - a;
+  const double t1 = v.y * w.z, t2 = v.z * w.y, t3 = v.z * w.x, t4 = v.x * w.z, t5 = v.x * w.y, t6 = v.y * w.x;
+  const double det = u.x * (t1 - t2) + u.y * (t3 - t4) + u.z * (t5 - t6);
+  const double permanent = std::fabs(u.x) * (std::fabs(t1) + std::fabs(t2)) +
+                           std::fabs(u.y) * (std::fabs(t3) + std::fabs(t4)) +
+                           std::fabs(u.z) * (std::fabs(t5) + std::fabs(t6));
+  const double largest = std::max({std::fabs(u.x), std::fabs(u.y), std::fabs(u.z), std::fabs(v.x), std::fabs(v.y),
+                                   std::fabs(v.z), std::fabs(w.x), std::fabs(w.y), std::fabs(w.z)});
+  bound = 7.7715611723761e-16 * permanent + 0x1p-1068 * (1 + largest);
+  return det;
+}
+
+// The filter: the sign of the estimate when its error bound cannot change it, 0 when the exact evaluation
+// must decide (also on overflow: inf, NaN).
+inline int orient3d_filter(Point3 a, Point3 b, Point3 c, Point3 d) {
+  double bound;
+  const double det = orient3d_estimate(a, b, c, d, bound);
+  if (det > bound) return 1;
+  if (-det > bound) return -1;
+  return 0;
+}
+
+// det [b - a, c - a, d - a] exactly, rounded to a double (a few ulps; 0 exactly when it is 0, possibly
+// underflowing for coordinates below about 1e-100): for constructions whose floating-point evaluation
+// cancels.
+double orient3d_value(Point3 a, Point3 b, Point3 c, Point3 d);
+
+// The 2D counterparts for points of a plane seen in a coordinate projection: det [b - a, c - a] with the
+// bound (3 + 16 eps) eps times the permanent plus 2^-1070 (1 + max |difference|), and its exact value.
+inline double orient2d_estimate(Point a, Point b, Point c, double& bound) {
+  const double l = (b.x - a.x) * (c.y - a.y), r = (b.y - a.y) * (c.x - a.x);
+  const double largest = std::max({std::fabs(b.x - a.x), std::fabs(b.y - a.y), std::fabs(c.x - a.x), std::fabs(c.y - a.y)});
+  bound = 3.3306690738754716e-16 * (std::fabs(l) + std::fabs(r)) + 0x1p-1070 * (1 + largest);
+  return l - r;
+}
+double orient2d_value(Point a, Point b, Point c);
+
+inline int orient3d(Point3 a, Point3 b, Point3 c, Point3 d) {
+  const int s = orient3d_filter(a, b, c, d);
+  return s != 0 ? s : orient3d_exact(a, b, c, d);
+}
+
+// The plane through p, q, r prepared for many tests: sign(x) = orient3d(p, q, r, x), exactly, with the
+// filter's 2 x 2 minors of q - p, r - p formed once. The filter is orient3d's (the same products, the
+// same bound: each term a difference times a minor of the other two differences), the exact path too.
+struct PlaneSide {
+  Point3 p, q, r;
+  Point3 n, pn;        // the minors' differences (q - p) x (r - p) and the sums of their absolute values
+  double largest = 0;  // max |component| of q - p and r - p
+  void set(Point3 a, Point3 b, Point3 c) {
+    p = a;
+    q = b;
+    r = c;
+    const Point3 u = b - a, v = c - a;
+    const double t1 = u.y * v.z, t2 = u.z * v.y, t3 = u.z * v.x, t4 = u.x * v.z, t5 = u.x * v.y, t6 = u.y * v.x;
+    n = {t1 - t2, t3 - t4, t5 - t6};
+    pn = {std::fabs(t1) + std::fabs(t2), std::fabs(t3) + std::fabs(t4), std::fabs(t5) + std::fabs(t6)};
+    largest = std::max({std::fabs(u.x), std::fabs(u.y), std::fabs(u.z), std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+  }
+  int sign(Point3 x) const {
+    const Point3 w = x - p;
+    const double det = w.x * n.x + w.y * n.y + w.z * n.z;
+    const double permanent = std::fabs(w.x) * pn.x + std::fabs(w.y) * pn.y + std::fabs(w.z) * pn.z;
+    const double big = std::max({largest, std::fabs(w.x), std::fabs(w.y), std::fabs(w.z)});
+    const double bound = 7.7715611723761e-16 * permanent + 0x1p-1068 * (1 + big);
+    if (det > bound) return 1;
+    if (-det > bound) return -1;
+    return orient3d_exact(p, q, r, x);
+  }
+};
+
+// Orientation of the projections of a, b, c onto the coordinate plane that drops axis (0: x, 1: y, 2: z),
+// as orient2d on (y, z), (z, x) and (x, y) respectively: for points of a plane whose normal has a non-zero
+// component along axis, the orientation within that plane (up to that component's sign). Exact.
+inline int orient2d_projected(Point3 a, Point3 b, Point3 c, int axis) {
+  auto drop = [axis](Point3 p) { return axis == 0 ? Point{p.y, p.z} : axis == 1 ? Point{p.z, p.x} : Point{p.x, p.y}; };
+  return orient2d(drop(a), drop(b), drop(c));
+}
+
+}  // namespace dlmfsi

@@ -1,0 +1,333 @@
+// The FreeFEM adapter for tetrahedral meshes: dlmfsi(Vf, Vs, [X, Y, Z], ...) on mesh3 spaces.
+//
+//   matrix B = dlmfsi(Vf, Vs, [X, Y, Z], c1=1, c2=10, fluid=[0,1,2], solid=[0,1,2]);  // rows Vs, columns Vf
+//
+// The contract and the named parameters are those of the 2D function (dlmfsi.cpp); method="quadrature"
+// is 2D only. It converts FreeFEM's mesh3 and FESpace3 into the core's arrays and Basis3 evaluators (the
+// element's own basis functions, so any 3D element works), calls dlmfsi::assemble_coupling (coupling3d),
+// and turns every C++ exception into a FreeFEM ExecError that a script can catch.
+#include "ff++.hpp"
+
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "adapter.hpp"
+#include "coupling3d.hpp"
+#include "errors.hpp"
+
+namespace {
+
+using dlmfsi::Point3;
+
+// A FreeFEM 3D finite element space as a dlmfsi::Basis3.
+class SpaceBasis3 : public dlmfsi::Basis3 {
+ public:
+  explicit SpaceBasis3(const FESpace3& vh) : vh_(vh), nd_(vh[0].NbDoF()), nc_(vh.N) {}
+  int components() const override { return nc_; }
+  int dof_count() const override { return vh_.NbOfDF; }
+  int local_dofs() const override { return nd_; }
+  void component_dofs(int c, int& first, int& last) const override {
+    first = vh_.TFE[0]->begin_dfcomp[c];
+    last = vh_.TFE[0]->end_dfcomp[c];
+  }
+  void dofs(int k, int* global) const override {
+    const FElement3 K = vh_[k];
+    for (int df = 0; df < nd_; ++df) global[df] = K(df);
+  }
+  void evaluate(int k, Point3 xi, double* out) const override {
+    basis_functions(k, xi, Fop_D0 | Fop_D1, out);
+  }
+  void values(int k, Point3 xi, double* out) const override { basis_functions(k, xi, Fop_D0, out); }
+
+ private:
+  // The operators asked for (op_id, op_dx, op_dy, op_dz) into out; the others are left as they are.
+  void basis_functions(int k, Point3 xi, What_d what, double* out) const {
+    // FreeFEM's layout is (df, component, operator) with df fastest.
+    thread_local std::vector<double> buffer;
+    const size_t size = static_cast<size_t>(nd_) * nc_ * last_operatortype;
+    if (buffer.size() < size) buffer.resize(size);
+    KNMK_<double> fb(buffer.data(), nd_, nc_, last_operatortype);
+    const FElement3 K = vh_[k];
+    K.BF(what, R3(xi.x, xi.y, xi.z), fb);
+    const bool derivatives = (what & Fop_D1) != 0;
+    for (int df = 0; df < nd_; ++df)
+      for (int c = 0; c < nc_; ++c) {
+        double* o = out + (df * nc_ + c) * 4;
+        o[0] = fb(df, c, op_id);
+        if (!derivatives) continue;
+        o[1] = fb(df, c, op_dx);
+        o[2] = fb(df, c, op_dy);
+        o[3] = fb(df, c, op_dz);
+      }
+  }
+  const FESpace3& vh_;
+  int nd_, nc_;
+};
+
+// Vertices, tetrahedra and FreeFEM's own face adjacency (built here when FreeFEM has none); checked with
+// exact predicates.
+dlmfsi::Mesh3 convert(const Fem2D::Mesh3& th) {
+  dlmfsi::Mesh3 m;
+  m.vertices.resize(th.nv);
+  for (int v = 0; v < th.nv; ++v) m.vertices[v] = {th(v).x, th(v).y, th(v).z};
+  m.tetrahedra.resize(th.nt);
+  for (int k = 0; k < th.nt; ++k)
+    for (int i = 0; i < 4; ++i) m.tetrahedra[k][i] = th(k, i);
+  if (!th.TheAdjacencesLink) {
+    m.build_adjacency();
+    return m;
+  }
+  m.neighbours.resize(th.nt);
+  for (int k = 0; k < th.nt; ++k)
+    for (int i = 0; i < 4; ++i) {
+      int j = i;
+      const int kk = th.ElementAdj(k, j);
+      m.neighbours[k][i] = (kk < 0 || kk == k) ? -1 : kk;
+    }
+  m.check();
+  return m;
+}
+
+// The fluid side of the last call, reused while the fluid space and the coupled components stay the same
+// (FreeFEM never reuses a space's unique id, so a space rebuilt on a new mesh is never mistaken for it).
+struct FluidCache3 {
+  const FESpace3* space = nullptr;
+  UniqueffId id;
+  std::vector<int> components;
+  std::unique_ptr<SpaceBasis3> basis;
+  std::unique_ptr<dlmfsi::FluidSide3> side;
+
+  const dlmfsi::FluidSide3& get(const FESpace3& vf, const std::vector<int>& comps) {
+    if (side && space == &vf && id == vf && components == comps) return *side;
+    side.reset();
+    basis.reset(new SpaceBasis3(vf));
+    side.reset(new dlmfsi::FluidSide3(convert(vf.Th), *basis, comps));
+    space = &vf;
+    id = vf;
+    components = comps;
+    return *side;
+  }
+};
+
+// The solid side (solid mesh, multiplier fit) and the fits of the map's spaces, reused while the
+// multiplier space and its coupled components stay the same (in a time loop only the map's values change).
+struct SolidCache3 {
+  struct MapFit {
+    const FESpace3* space;
+    UniqueffId id;
+    int comp, degree;
+    std::unique_ptr<SpaceBasis3> basis;
+    std::unique_ptr<dlmfsi::PolynomialBasis3> fit;
+  };
+  const FESpace3* space = nullptr;
+  UniqueffId id;
+  std::vector<int> components;
+  std::unique_ptr<SpaceBasis3> basis;
+  std::unique_ptr<dlmfsi::SolidSide3> side;
+  std::vector<MapFit> fits;
+
+  const dlmfsi::SolidSide3& get(const FESpace3& vs, const std::vector<int>& comps) {
+    if (side && space == &vs && id == vs && components == comps) return *side;
+    fits.clear();
+    side.reset();
+    basis.reset(new SpaceBasis3(vs));
+    side.reset(new dlmfsi::SolidSide3(convert(vs.Th), *basis, comps));
+    space = &vs;
+    id = vs;
+    components = comps;
+    return *side;
+  }
+
+  // The fit of component comp of the map's space vm at the given degree (kept across calls; the three
+  // most recently used).
+  const dlmfsi::PolynomialBasis3* map_fit(const FESpace3& vm, int comp, int degree) {
+    for (auto it = fits.begin(); it != fits.end(); ++it)
+      if (it->space == &vm && it->id == vm && it->comp == comp && it->degree == degree) {
+        std::rotate(it, it + 1, fits.end());
+        return fits.back().fit.get();
+      }
+    MapFit f{&vm, vm, comp, degree, std::make_unique<SpaceBasis3>(vm), nullptr};
+    f.fit = std::make_unique<dlmfsi::PolynomialBasis3>(*f.basis, side->mesh(), degree, std::vector<int>{comp});
+    fits.push_back(std::move(f));
+    return fits.back().fit.get();
+  }
+  // Once per call, before map_fit: keeps the fits of the last call's map.
+  void trim_fits() {
+    if (fits.size() > 3) fits.erase(fits.begin(), fits.end() - 3);
+  }
+};
+
+FluidCache3& fluid_cache() {
+  static FluidCache3* cache = new FluidCache3;  // never destroyed: FreeFEM tears its spaces down first
+  return *cache;
+}
+
+SolidCache3& solid_cache() {
+  static SolidCache3* cache = new SolidCache3;
+  return *cache;
+}
+
+class Dlmfsi3Op : public E_F0mps {
+ public:
+  typedef newpMatrice_Creuse<double> Result;
+  // The 2D function's named parameters (dlmfsi.cpp), in the same order.
+  static const int n_name_param = 13;
+  static basicAC_F0::name_and_type name_param[n_name_param];
+  enum { kC1, kC2, kFluid, kSolid, kMethod, kGradient, kQforder, kTol, kSubdivide, kOutside, kOutsideTol, kThreads, kPart };
+
+  Expression fluid_space, solid_space, map[3];
+  Expression nargs[n_name_param];
+  std::vector<Expression> fluid_list, solid_list, part_list;  // literal arrays: one expression per entry
+
+  explicit Dlmfsi3Op(const basicAC_F0& args) {
+    basicAC_F0::name_and_type np[n_name_param];
+    for (int i = 0; i < n_name_param; ++i) np[i] = name_param[i];
+    for (int i : {int(kFluid), int(kSolid), int(kPart)})
+      if (args.find(np[i].name).left() == atype<E_Array>()) np[i].type = &typeid(E_Array);
+    args.SetNameParam(n_name_param, np, nargs);
+    for (int i : {int(kFluid), int(kSolid), int(kPart)})
+      if (const E_Array* a = dynamic_cast<const E_Array*>(nargs[i])) {
+        auto& list = i == kFluid ? fluid_list : (i == kSolid ? solid_list : part_list);
+        for (int e = 0; e < a->size(); ++e) list.push_back(to<long>((*a)[e]));
+        nargs[i] = 0;
+      }
+    fluid_space = to<pfes3*>(args[0]);
+    solid_space = to<pfes3*>(args[1]);
+    // A map that is not three 3D FE functions is a run-time error (catchable), not a compile error.
+    const E_Array* xyz = dynamic_cast<const E_Array*>(args[2].LeftValue());
+    bool ok = xyz && xyz->size() == 3;
+    for (int a = 0; a < 3 && ok; ++a) ok = atype<pf3r>()->CastingFrom((*xyz)[a].left());
+    if (!ok) {
+      map_error = "dlmfsi: on mesh3 spaces the map must be [X, Y, Z], three FE functions on the solid's mesh3";
+      for (Expression& e : map) e = 0;
+      return;
+    }
+    for (int a = 0; a < 3; ++a) map[a] = to<pf3r>((*xyz)[a]);
+  }
+  std::string map_error;
+
+  static ArrayOfaType typeargs() { return ArrayOfaType(atype<pfes3*>(), atype<pfes3*>(), atype<E_Array>()); }
+  static E_F0* f(const basicAC_F0& args) { return new Dlmfsi3Op(args); }
+  AnyType operator()(Stack stack) const;
+
+ private:
+  template <class T>
+  T arg(int i, Stack stack, T otherwise) const {
+    return nargs[i] ? GetAny<T>((*nargs[i])(stack)) : otherwise;
+  }
+  std::string text(int i, Stack stack, const char* otherwise) const {
+    return nargs[i] ? *GetAny<string*>((*nargs[i])(stack)) : std::string(otherwise);
+  }
+  std::vector<int> integers(int i, const std::vector<Expression>& list, Stack stack) const {
+    std::vector<int> out;
+    for (Expression e : list) out.push_back(static_cast<int>(GetAny<long>((*e)(stack))));
+    if (nargs[i]) {
+      KN_<long> v = GetAny<KN_<long> >((*nargs[i])(stack));
+      for (int k = 0; k < v.N(); ++k) out.push_back(static_cast<int>(v[k]));
+    }
+    return out;
+  }
+  dlmfsi::CouplingOptions options(Stack stack) const;
+};
+
+basicAC_F0::name_and_type Dlmfsi3Op::name_param[n_name_param] = {
+    {"c1", &typeid(double)},        {"c2", &typeid(double)},        {"fluid", &typeid(KN_<long>)},
+    {"solid", &typeid(KN_<long>)},  {"method", &typeid(string*)},   {"gradient", &typeid(string*)},
+    {"qforder", &typeid(long)},     {"tol", &typeid(double)},       {"subdivide", &typeid(long)},
+    {"outside", &typeid(string*)},  {"outsidetol", &typeid(double)}, {"threads", &typeid(long)},
+    {"part", &typeid(KN_<long>)}};
+
+dlmfsi::CouplingOptions Dlmfsi3Op::options(Stack stack) const {
+  using Options = dlmfsi::CouplingOptions;
+  Options o;
+  o.c1 = arg(kC1, stack, 1.0);
+  o.c2 = arg(kC2, stack, 1.0);
+  o.fluid_components = integers(kFluid, fluid_list, stack);
+  o.solid_components = integers(kSolid, solid_list, stack);
+  if (o.fluid_components.empty()) o.fluid_components.push_back(0);
+  if (o.solid_components.empty()) o.solid_components.push_back(0);
+  const std::vector<int> part = integers(kPart, part_list, stack);
+  if (!part.empty()) {
+    if (part.size() != 2 || part[1] < 1 || part[0] < 0 || part[0] >= part[1])
+      throw dlmfsi::Error("part=[rank, size] needs 0 <= rank < size");
+    o.part = part[0];
+    o.parts = part[1];
+  }
+  const std::string method = text(kMethod, stack, "exact");
+  if (method == "quadrature") throw dlmfsi::Error("method=\"quadrature\" is 2D only; on mesh3 spaces use \"exact\"");
+  if (method != "exact") throw dlmfsi::Error("method=\"" + method + "\": expected \"exact\" or \"quadrature\"");
+  const std::string gradient = text(kGradient, stack, "chain");
+  if (gradient == "chain")
+    o.gradient = Options::Gradient::Chain;
+  else if (gradient == "listing")
+    o.gradient = Options::Gradient::Listing;
+  else
+    throw dlmfsi::Error("gradient=\"" + gradient + "\": expected \"chain\" or \"listing\"");
+  // Given values are range-checked before they become ints.
+  const long qforder = arg(kQforder, stack, -1L), subdivide = arg(kSubdivide, stack, -1L), threads = arg(kThreads, stack, 1L);
+  if (qforder < -1 || qforder > 40)
+    throw dlmfsi::Error("qforder=" + std::to_string(qforder) + " out of range (0 to 40 in 3D, or -1 for the automatic choice)");
+  if (subdivide < -1 || subdivide > 4)
+    throw dlmfsi::Error("subdivide=" + std::to_string(subdivide) +
+                        " out of range (0 to 4 in 3D, or -1 for the default: 8^subdivide parts per curved tetrahedron)");
+  if (threads < 1 || threads > 1024) throw dlmfsi::Error("threads=" + std::to_string(threads) + " must lie in 1 .. 1024");
+  o.qforder = static_cast<int>(qforder);
+  o.tol = arg(kTol, stack, o.tol);
+  o.subdivide = static_cast<int>(subdivide);
+  const std::string outside = text(kOutside, stack, "error");
+  if (outside == "drop")
+    o.drop_outside = true;
+  else if (outside != "error")
+    throw dlmfsi::Error("outside=\"" + outside + "\": expected \"error\" or \"drop\"");
+  o.outside_tol = arg(kOutsideTol, stack, o.outside_tol);
+  o.threads = static_cast<int>(threads);
+  return o;
+}
+
+AnyType Dlmfsi3Op::operator()(Stack stack) const {
+  return dlmfsi_ff::guarded([&]() -> AnyType {
+    if (!map_error.empty()) throw dlmfsi::Error(map_error.substr(8));
+    const dlmfsi::CouplingOptions opt = options(stack);
+    FESpace3* vf = **GetAny<pfes3*>((*fluid_space)(stack));
+    FESpace3* vs = **GetAny<pfes3*>((*solid_space)(stack));
+    if (!vf || !vs) throw dlmfsi::Error("a space is not defined");
+    pf3r p[3];
+    const FESpace3* sp[3];
+    for (int a = 0; a < 3; ++a) {
+      p[a] = GetAny<pf3r>((*map[a])(stack));
+      if (!p[a].first || !p[a].first->x() || !(FESpace3*)p[a].first->Vh)
+        throw dlmfsi::Error("the map [X, Y, Z] holds a finite element function without values");
+      sp[a] = (FESpace3*)p[a].first->Vh;
+      if (&sp[a]->Th != &vs->Th) throw dlmfsi::Error("the map [X, Y, Z] is not defined on the mesh of the multiplier space Vs");
+    }
+    const dlmfsi::FluidSide3& fluid = fluid_cache().get(*vf, opt.fluid_components);
+    SolidCache3& cache = solid_cache();
+    const dlmfsi::SolidSide3& solid = cache.get(*vs, opt.solid_components);
+    cache.trim_fits();
+    const SpaceBasis3 bx(*sp[0]), by(*sp[1]), bz(*sp[2]);
+    const dlmfsi::Basis3* spaces[3] = {&bx, &by, &bz};
+    const int comps[3] = {p[0].second, p[1].second, p[2].second};
+    const double* values[3] = {&(*p[0].first->x())[0], &(*p[1].first->x())[0], &(*p[2].first->x())[0]};
+    const int degree = dlmfsi::FieldMap3::fit_degree(spaces, comps);
+    const dlmfsi::PolynomialBasis3* fits[3] = {nullptr, nullptr, nullptr};
+    if (degree > 0)
+      for (int a = 0; a < 3; ++a) fits[a] = cache.map_fit(*sp[a], comps[a], degree);
+    const dlmfsi::FieldMap3 xmap(solid.mesh(), spaces, values, comps, fits);
+    dlmfsi::CouplingReport3 report;
+    dlmfsi::CsrMatrix b = dlmfsi::assemble_coupling(fluid, solid, xmap, opt, &report);
+    if (verbosity > 1) cout << report.summary() << endl;
+    if (opt.drop_outside && report.outside_volume > 0 && verbosity > 0)
+      cout << "dlmfsi: dropped volume outside the fluid mesh " << report.outside_volume << " (solid tetrahedron "
+           << report.worst_tetrahedron << " worst)" << endl;
+    MatriceMorse<double>* pa = new MatriceMorse<double>(b.rows, b.cols, 0, 0);
+    pa->set(b.rows, b.cols, 0, b.value.size(), b.start.data(), b.column.data(), b.value.data(), 0, 1);
+    return SetAny<newpMatrice_Creuse<double> >(newpMatrice_Creuse<double>(stack, pa));
+  });
+}
+
+}  // namespace
+
+// Called from dlmfsi.cpp's load function.
+void dlmfsi_register_3d() { Global.Add("dlmfsi", "(", new OneOperatorCode<Dlmfsi3Op>); }

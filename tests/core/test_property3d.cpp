@@ -1,0 +1,325 @@
+// Property / fuzz test of the tetrahedron clipper.
+//
+// DLMFSI_FUZZ3D_PAIRS (default 2000) pairs of tetrahedra, drawn in turn from families of random and
+// adversarial configurations (random; snapped to coarse grids; cells of a Kuhn-split cube grid moved by
+// grid symmetries or rotated about a shared vertex; vertices on faces, edges and vertices by exact dyadic
+// combinations; 1e-15 and few-ulp perturbations of those; slivers of aspect ratio 1e12; huge and tiny
+// coordinates, 1e-100 to 1e100; identical, mirrored and face-sharing copies). For every pair:
+//  - the pieces a ∩ b and b ∩ a have a valid shape (support3d.hpp: faces ordered from the exact plane
+//    sets, Euler's formula, vertices within round-off of both tetrahedra and of their planes);
+//  - vol(a ∩ b) agrees with the exact volume (GMP rationals, reference3d.hpp) and with vol(b ∩ a);
+//  - tiling: a split into four tetrahedra about its centroid, then b: the pieces add up to vol(a ∩ b).
+// Errors are measured against 1e-13 * M * D^2 (M the largest |coordinate|, D the diameter of the pair's
+// bounding box): for tetrahedra of unit shape about the origin, 1e-13 relative to their volume; for
+// slivers and far translated pairs, the round-off floor of double output vertices (eps * M each).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <string>
+
+#include "clip3d.hpp"
+#include "predicates3d.hpp"
+#include "reference3d.hpp"
+#include "support3d.hpp"
+
+using namespace dlmfsi;
+using dlmfsi::test3d::Tet;
+
+namespace {
+
+long env_long(const char* name, long fallback) {
+  const char* s = std::getenv(name);
+  if (!s || !*s) return fallback;
+  const double v = std::strtod(s, nullptr);
+  return v >= 0 ? static_cast<long>(v) : fallback;
+}
+
+enum Family { kRandom, kSnapped, kMeshCell, kOnFace, kPerturbed, kSliver, kHugeTiny, kCopies, kFamilies };
+const char* const kFamilyName[kFamilies] = {"random", "snapped-to-grid", "mesh-cells", "on-faces-edges-vertices",
+                                            "perturbed-1e-15", "slivers-1e12", "huge-tiny-1e100", "copies"};
+
+class Generator {
+ public:
+  explicit Generator(std::uint64_t seed) : rng_(seed) {}
+
+  // A pair of positively oriented, non-flat, finite tetrahedra of the family.
+  void pair(Family f, Tet& a, Tet& b) {
+    for (;;) {
+      draw(f, a, b);
+      if (test3d::finite(a) && test3d::finite(b) && test3d::make_positive(a) && test3d::make_positive(b)) return;
+    }
+  }
+
+ private:
+  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
+  int integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng_); }
+  bool coin() { return integer(0, 1) == 1; }
+  Point3 rnd() { return {uniform(0, 1), uniform(0, 1), uniform(0, 1)}; }
+
+  void draw(Family f, Tet& a, Tet& b) {
+    switch (f) {
+      case kRandom: random(a, b); break;
+      case kSnapped: snapped(a, b); break;
+      case kMeshCell: mesh_cell(a, b); break;
+      case kOnFace: on_face(a, b); break;
+      case kPerturbed: perturbed(a, b); break;
+      case kSliver: sliver(a, b); break;
+      case kHugeTiny: huge_tiny(a, b); break;
+      default: copies(a, b);
+    }
+  }
+
+  void random(Tet& a, Tet& b) {
+    for (auto& p : a) p = rnd();
+    for (auto& p : b) p = rnd();
+    if (integer(0, 3) == 0) {  // far from the origin: the round-off floor grows with |coordinates|
+      const Point3 o{uniform(-1e3, 1e3), uniform(-1e3, 1e3), uniform(-1e3, 1e3)};
+      for (auto& p : a) p = p + o;
+      for (auto& p : b) p = p + o;
+    }
+  }
+
+  // Integer coordinates in [0, g] times a power of two: coincident vertices, shared faces and edges,
+  // coplanar faces, vertices on faces.
+  void snapped(Tet& a, Tet& b) {
+    const int g = integer(1, 4);
+    const double s = std::ldexp(1.0, integer(-4, 4));
+    auto pt = [&] { return Point3{s * integer(0, g), s * integer(0, g), s * integer(0, g)}; };
+    for (auto& p : a) p = pt();
+    for (auto& p : b) p = pt();
+  }
+
+  // One of the six Kuhn tetrahedra of cube (i, j, k) of an h = 1/4 grid: the path 0 -> e_p -> e_p + e_q -> 1.
+  Tet kuhn(int i, int j, int k, int which) {
+    static const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    const double h = 0.25;
+    double c[3] = {i * h, j * h, k * h};
+    Tet t;
+    t[0] = {c[0], c[1], c[2]};
+    for (int s = 0; s < 3; ++s) {
+      c[perms[which][s]] += h;
+      t[s + 1] = {c[0], c[1], c[2]};
+    }
+    return t;
+  }
+
+  // Two grid cells (shared faces, edges, vertices, disjoint); or one moved by a grid symmetry (a rotation
+  // by 90 degrees about an axis through a grid vertex, a translation by grid steps): vertices on vertices,
+  // faces on faces; or rotated by a random angle about one of its vertices placed on a vertex of the other.
+  void mesh_cell(Tet& a, Tet& b) {
+    b = kuhn(integer(0, 2), integer(0, 2), integer(0, 2), integer(0, 5));
+    a = kuhn(integer(0, 2), integer(0, 2), integer(0, 2), integer(0, 5));
+    const int mode = integer(0, 2);
+    if (mode == 0) {
+      const Point3 c{0.25 * integer(0, 3), 0.25 * integer(0, 3), 0.25 * integer(0, 3)};
+      const int axis = integer(0, 2), turns = integer(0, 3);
+      const Point3 t{0.25 * integer(-1, 1), 0.25 * integer(-1, 1), 0.25 * integer(-1, 1)};
+      for (auto& p : a) {
+        Point3 d = p - c;
+        for (int r = 0; r < turns; ++r) {
+          if (axis == 0) d = {d.x, -d.z, d.y};
+          else if (axis == 1) d = {d.z, d.y, -d.x};
+          else d = {-d.y, d.x, d.z};
+        }
+        p = c + d + t;
+      }
+    } else if (mode == 1) {
+      // a random rotation (Rodrigues) about a vertex of a, which is moved onto a vertex of b
+      Point3 axis{uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)};
+      const double len = std::sqrt(dot(axis, axis));
+      axis = (1 / len) * axis;
+      const double th = uniform(0, 6.283185307179586), cs = std::cos(th), sn = std::sin(th);
+      const Point3 c = a[integer(0, 3)], target = b[integer(0, 3)];
+      for (auto& p : a) {
+        const Point3 d = p - c;
+        const Point3 r = cs * d + sn * cross(axis, d) + ((1 - cs) * dot(axis, d)) * axis;
+        p = p == c ? target : target + r;  // the rotation centre lands exactly on target
+      }
+    }
+  }
+
+  // a with coordinates k/8; vertices of b at exact dyadic combinations of a's vertices: on a face, on an
+  // edge (or its line), on a vertex, or free.
+  void on_face(Tet& a, Tet& b) {
+    for (auto& p : a) p = {integer(-8, 8) / 8.0, integer(-8, 8) / 8.0, integer(-8, 8) / 8.0};
+    for (auto& p : b) {
+      const int kind = integer(0, 4);
+      if (kind <= 1) {  // on a face plane: weights k/8 on three vertices, summing to 1
+        const int f = integer(0, 3);
+        const int u = integer(-4, 12), v = integer(-4, 12);
+        const Point3 q = a[(f + 1) % 4], r = a[(f + 2) % 4], s = a[(f + 3) % 4];
+        p = q + (u / 8.0) * (r - q) + (v / 8.0) * (s - q);
+      } else if (kind == 2) {  // on an edge line
+        const int i = integer(0, 3), j = (i + integer(1, 3)) % 4;
+        p = a[i] + (integer(-8, 16) / 8.0) * (a[j] - a[i]);
+      } else if (kind == 3) {
+        p = a[integer(0, 3)];
+      } else {
+        p = {integer(-8, 8) / 8.0, integer(-8, 8) / 8.0, integer(-8, 8) / 8.0};
+      }
+    }
+    if (coin()) std::swap(a, b);
+  }
+
+  // A coincident configuration moved off by 1e-15 (relative) or a few ulps in one to three coordinates.
+  void perturbed(Tet& a, Tet& b) {
+    const int base = integer(0, 3);
+    if (base == 0) snapped(a, b);
+    else if (base == 1) mesh_cell(a, b);
+    else if (base == 2) on_face(a, b);
+    else copies(a, b);
+    const int n = integer(1, 3);
+    for (int k = 0; k < n; ++k) {
+      Tet& t = coin() ? a : b;
+      Point3& p = t[integer(0, 3)];
+      const int axis = integer(0, 2);
+      double& v = axis == 0 ? p.x : axis == 1 ? p.y : p.z;
+      if (coin()) {
+        v += (coin() ? 1e-15 : -1e-15) * std::max(1.0, std::fabs(v));
+      } else {
+        const int ulps = integer(1, 4);
+        for (int u = 0; u < ulps; ++u) v = std::nextafter(v, coin() ? 2.0 : -2.0);
+      }
+    }
+  }
+
+  // A flat tetrahedron (height about 1e-12 of its size) or a needle (two dimensions that small), against a
+  // random tetrahedron, a grid cell, or a sliver sharing its base (either side).
+  void sliver(Tet& a, Tet& b) {
+    const Point3 base[3] = {rnd(), rnd(), rnd()};
+    const double eps = 1e-12 * uniform(0.5, 2);
+    if (coin()) {
+      const Point3 n = cross(base[1] - base[0], base[2] - base[0]);
+      a = {base[0], base[1], base[2], (1.0 / 3) * (base[0] + base[1] + base[2]) + eps * n};
+    } else {
+      const Point3 d = base[1] - base[0];
+      a = {base[0], base[1], base[0] + 0.5 * d + eps * Point3{-d.y, d.x, 0}, base[0] + 0.3 * d + eps * Point3{0, -d.z, d.y}};
+    }
+    switch (integer(0, 2)) {
+      case 0:
+        for (auto& p : b) p = {uniform(-0.5, 1.5), uniform(-0.5, 1.5), uniform(-0.5, 1.5)};
+        break;
+      case 1:
+        b = kuhn(integer(0, 3), integer(0, 3), integer(0, 3), integer(0, 5));
+        break;
+      default:  // shares the base face, same or other side
+        b = {a[0], a[1], a[2], a[3] + (coin() ? 1.0 : -1.0) * uniform(0.5, 2) * (a[3] - a[0])};
+    }
+    if (coin()) std::swap(a, b);
+  }
+
+  // Snapped, on-face or random configurations scaled to about 1e100 or 1e-100, by a power of two (exact)
+  // or by 1e100 itself (rounded).
+  void huge_tiny(Tet& a, Tet& b) {
+    const int base = integer(0, 2);
+    if (base == 0) snapped(a, b);
+    else if (base == 1) on_face(a, b);
+    else random(a, b);
+    const bool huge = coin(), pow2 = coin();
+    const double s = pow2 ? std::ldexp(1.0, huge ? 332 : -332) : (huge ? 1e100 : 1e-100);
+    for (auto& p : a) p = s * p;
+    for (auto& p : b) p = s * p;
+  }
+
+  // Identical (vertices permuted), mirrored through a face's vertex (shared face, other side), sharing a
+  // face on the same side, or inside sharing a face.
+  void copies(Tet& a, Tet& b) {
+    for (auto& p : a) p = coin() ? Point3{integer(0, 8) / 8.0, integer(0, 8) / 8.0, integer(0, 8) / 8.0} : rnd();
+    if (!test3d::make_positive(a)) return;
+    const int i = integer(0, 3);
+    const Point3 p = a[(i + 1) % 4], q = a[(i + 2) % 4], r = a[(i + 3) % 4], o = a[i];
+    const Point3 centre = (1.0 / 3) * (p + q + r);
+    switch (integer(0, 3)) {
+      case 0: b = {q, r, p, o}; break;
+      case 1: b = {p, q, r, centre + (centre - o)}; break;                               // other side
+      case 2: b = {p, q, r, o + uniform(-0.5, 0.5) * (q - p) + uniform(0.1, 1) * (o - centre)}; break;  // same side
+      default: b = {p, q, r, centre + (integer(1, 7) / 8.0) * (o - centre)};             // inside
+    }
+    if (coin()) std::swap(a, b);
+  }
+
+  std::mt19937_64 rng_;
+};
+
+struct Worst {
+  double value = 0;
+  std::string where;
+  void update(double v, const std::string& w) {
+    if (!(v <= value)) {  // NaN counts as worst
+      value = v;
+      where = w;
+    }
+  }
+};
+
+std::string describe(long index, Family f, const Tet& a, const Tet& b) {
+  std::string s = "pair " + std::to_string(index) + " (" + kFamilyName[f] + ")";
+  char buf[128];
+  for (const Tet* t : {&a, &b}) {
+    s += t == &a ? " a =" : " b =";
+    for (Point3 p : *t) {
+      std::snprintf(buf, sizeof buf, " (%.17g, %.17g, %.17g)", p.x, p.y, p.z);
+      s += buf;
+    }
+  }
+  return s;
+}
+
+}  // namespace
+
+TEST(Property3d, ClipperAgainstExactVolumes) {
+  const long pairs = env_long("DLMFSI_FUZZ3D_PAIRS", 2000);
+  Generator gen(20240601);
+  const auto start = std::chrono::steady_clock::now();
+  long failures = 0, empty = 0, whole = 0, bad_shape = 0;
+  long per_family[kFamilies] = {};
+  double family_error[kFamilies] = {};
+  Worst exact_error, symmetry_error, tiling_error;
+  for (long k = 0; k < pairs; ++k) {
+    const Family f = static_cast<Family>(k % kFamilies);
+    Tet a, b;
+    gen.pair(f, a, b);
+    ++per_family[f];
+    double m, d;
+    test3d::scales(a, b, m, d);
+    const double scale = m * d * d;  // volumes' round-off floor, divided by eps
+    const Piece3 p = clip(a.data(), b.data()), q = clip(b.data(), a.data());
+    const std::string shape = test3d::piece_shape(p, a, b, 64 * 2.2e-16 * m) + test3d::piece_shape(q, b, a, 64 * 2.2e-16 * m);
+    if (!shape.empty()) {
+      if (++bad_shape <= 5) ADD_FAILURE() << shape << ": " << describe(k, f, a, b);
+    }
+    empty += p.n == 0;
+    whole += p.n == 4;
+    bool positive;
+    const double exact = ref::exact_intersection_volume(a.data(), b.data(), &positive);
+    const double v = p.volume();
+    exact_error.update(std::fabs(v - exact) / scale, describe(k, f, a, b));
+    family_error[f] = std::max(family_error[f], std::fabs(v - exact) / scale);
+    symmetry_error.update(std::fabs(q.volume() - v) / scale, describe(k, f, a, b));
+    if ((p.n > 0) != positive && ++failures <= 5)
+      ADD_FAILURE() << "empty piece against a positive exact volume or the reverse: " << describe(k, f, a, b);
+    Tet as[4], bs[4];
+    for (int side = 0; side < 2; ++side) {
+      if (!test3d::split4(side == 0 ? a : b, side == 0 ? as : bs)) continue;
+      double s = 0;
+      for (int i = 0; i < 4; ++i) s += side == 0 ? clip(as[i].data(), b.data()).volume() : clip(a.data(), bs[i].data()).volume();
+      tiling_error.update(std::fabs(s - v) / scale, describe(k, f, a, b));
+    }
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("[ property3d ] %ld pairs (%ld empty, %ld whole), %.1f s; worst error / (M D^2): exact %.3g, "
+              "symmetry %.3g, tiling %.3g; per family:",
+              pairs, empty, whole, seconds, exact_error.value, symmetry_error.value, tiling_error.value);
+  for (int f = 0; f < kFamilies; ++f) std::printf(" %s %ld (%.2g)", kFamilyName[f], per_family[f], family_error[f]);
+  std::printf("\n");
+  EXPECT_LE(exact_error.value, 1e-13) << exact_error.where;
+  EXPECT_LE(symmetry_error.value, 1e-13) << symmetry_error.where;
+  EXPECT_LE(tiling_error.value, 1e-13) << tiling_error.where;
+  EXPECT_EQ(bad_shape, 0);
+  EXPECT_EQ(failures, 0);
+}
