@@ -28,12 +28,13 @@ namespace dlmfsi {
 class FluidSide;
 struct CouplingReport;
 
-// What every integrator of one call reads (shared by the threads).
-struct Integrand {
-  const Basis& fluid_space;          // the fluid side's space (renumbered, scaled coordinates)
-  const PolynomialBasis& fluid;      // its fitted basis on the coupled components
-  const Basis& multiplier_space;
-  const PolynomialBasis& multiplier;
+// What every integrator of one call reads (shared by the threads). Space: BasisOf<D>; Fit: its fitted basis.
+template <class Space, class Fit>
+struct IntegrandOf {
+  const Space& fluid_space;  // the fluid side's space (renumbered, scaled coordinates)
+  const Fit& fluid;          // its fitted basis on the coupled components
+  const Space& multiplier_space;
+  const Fit& multiplier;
   const ComponentPairs& pairs;
   double c1, c2;
   bool chain;  // the chain rule; otherwise the listings' product (applies where c1 != 0)
@@ -41,6 +42,7 @@ struct Integrand {
   // exact for their product (affine maps).
   int fluid_degree, multiplier_degree, product_degree;
 };
+using Integrand = IntegrandOf<Basis, PolynomialBasis>;
 
 // The straight image (or part of a split image, split.hpp) of a solid triangle that is clipped against the
 // fluid: its pieces are integrated in fluid coordinates.
