@@ -31,36 +31,38 @@ std::string CouplingReport::summary() const {
 
 namespace {
 
-// One thread's share of the assembly: each solid triangle's block, integrated by the chosen
-// TriangleIntegrator and scattered to triplets.
+// One thread's share of one call: each solid triangle's block, integrated by the chosen TriangleIntegrator
+// and scattered to the thread's triplets.
 class Assembler {
  public:
   Assembler(const Integrand& integrand, const FluidSide& fluid, const SolidSide& solid, const SolidMap& map,
-            const CouplingOptions& options, const CouplingReport& degrees)
-      : solid_(solid), map_(map), block_(solid.space().local_dofs(), integrand.pairs.used_multiplier_dofs(),
-                                         fluid.space().local_dofs(), integrand.pairs.used_fluid_dofs()) {
+            const CouplingOptions& options, const CouplingReport& degrees, FluidSearch& search,
+            std::vector<Triplet>& triplets)
+      : solid_(solid), map_(map), triplets_(triplets),
+        block_(solid.space().local_dofs(), integrand.pairs.used_multiplier_dofs(), fluid.space().local_dofs(),
+               integrand.pairs.used_fluid_dofs()) {
     report.fluid_degree = degrees.fluid_degree;
     report.solid_degree = degrees.solid_degree;
     report.rule_degree = degrees.rule_degree;
-    integrator_ = choose_integrator(integrand, fluid, map, options, report);
+    integrator_ = choose_integrator(integrand, fluid, search, map, options, report);
   }
   Assembler(const Assembler&) = delete;
   Assembler& operator=(const Assembler&) = delete;
 
   void run(const int* first, const int* last) {
+    triplets_.clear();
     // about two fluid triangles' columns per solid triangle: room for most runs without regrowing
-    triplets.reserve(static_cast<size_t>(last - first) * 2 * block_.used_entries_per_fluid_element());
+    triplets_.reserve(static_cast<size_t>(last - first) * 2 * block_.used_entries_per_fluid_element());
     for (const int* k = first; k != last; ++k) solid_triangle(*k);
   }
 
-  std::vector<Triplet> triplets;
   CouplingReport report;  // this thread's counts (the integrators count in it too)
 
  private:
   void solid_triangle(int ks) {
     MappedTriangle mt;
     mt.prepare(solid_.mesh(), map_, ks);
-    block_.start(solid_.space(), ks);
+    block_.start(solid_.dofs(ks));
     ++report.solid_triangles;
     (mt.affine ? report.affine : (mt.straight ? report.straight : report.curved))++;
     const double image_area = 0.5 * area2(mt.image[0], mt.image[1], mt.image[2]);
@@ -71,11 +73,12 @@ class Assembler {
       report.worst_outside = outside;
       report.worst_triangle = ks;
     }
-    block_.scatter(triplets);
+    block_.scatter(triplets_);
   }
 
   const SolidSide& solid_;
   const SolidMap& map_;
+  std::vector<Triplet>& triplets_;
   LocalBlock block_;
   std::unique_ptr<TriangleIntegrator> integrator_;
 };
@@ -99,11 +102,11 @@ void add_counts(const CouplingReport& r, CouplingReport& total) {
   }
 }
 
-// The solid triangles of share [first, last) of the indices, in the solid side's order.
-std::vector<int> share_in_order(const SolidSide& solid, int first, int last) {
+// The solid triangles of share [first, last) of the indices, in the solid side's order (the order itself
+// for the whole; otherwise written into out).
+const std::vector<int>& share_in_order(const SolidSide& solid, int first, int last, std::vector<int>& out) {
   if (first == 0 && last == solid.mesh().size()) return solid.order();
-  std::vector<int> out;
-  out.reserve(last - first);
+  out.clear();
   for (int k : solid.order())
     if (k >= first && k < last) out.push_back(k);
   return out;
@@ -163,9 +166,64 @@ void check_outside(const CouplingOptions& opt, int scale, CouplingReport& total)
   throw Error(msg);
 }
 
-// The assembly on checked input: the options valid, the sides prepared for the options' components.
-CsrMatrix assemble(const FluidSide& fluid, const SolidSide& solid, const SolidMap& map, const CouplingOptions& opt,
-                   CouplingReport* report) {
+void check_fluid_side(const FluidSide& fluid, const CouplingOptions& opt) {
+  if (opt.fluid_components != fluid.components()) throw Error("the fluid side was prepared for other components");
+}
+
+// The solid side prepared for this one call (its time counts as the call's setup), then the assembly.
+template <class Assemble>
+CsrMatrix assemble_on_solid(const Mesh& solid, const Basis& multiplier, const CouplingOptions& opt,
+                            CouplingReport* report, Assemble assemble) {
+  const auto start = std::chrono::steady_clock::now();
+  const SolidSide solid_side(solid, multiplier, opt.solid_components);
+  const double prepare = seconds_since(start);
+  CouplingAssembly assembly;
+  assemble(assembly, solid_side);
+  if (report) {
+    report->setup_seconds += prepare;
+    report->seconds += prepare;
+  }
+  return assembly.release();
+}
+
+}  // namespace
+
+// A thread's memory kept across calls: the search with its marks over the fluid side it was made for.
+struct CouplingAssembly::Thread {
+  long fluid_serial = -1;
+  std::unique_ptr<FluidSearch> search;
+
+  FluidSearch& search_on(const FluidSide& fluid) {
+    if (!search || fluid_serial != fluid.serial()) {
+      search = std::make_unique<FluidSearch>(fluid.grid());
+      fluid_serial = fluid.serial();
+    }
+    return *search;
+  }
+};
+
+// The access of assemble_coupling's other forms to the unchecked assembly.
+struct AssemblyAccess {
+  static const CsrMatrix& assemble(CouplingAssembly& assembly, const FluidSide& fluid, const SolidSide& solid,
+                                   const SolidMap& map, const CouplingOptions& opt, CouplingReport* report) {
+    return assembly.assemble_checked(fluid, solid, map, opt, report);
+  }
+};
+
+CouplingAssembly::CouplingAssembly() = default;
+CouplingAssembly::~CouplingAssembly() = default;
+
+const CsrMatrix& CouplingAssembly::assemble(const FluidSide& fluid, const SolidSide& solid, const SolidMap& map,
+                                            const CouplingOptions& opt, CouplingReport* report) {
+  check_options(fluid.space(), solid.space(), opt);
+  check_fluid_side(fluid, opt);
+  if (opt.solid_components != solid.components()) throw Error("the solid side was prepared for other components");
+  return assemble_checked(fluid, solid, map, opt, report);
+}
+
+const CsrMatrix& CouplingAssembly::assemble_checked(const FluidSide& fluid, const SolidSide& solid,
+                                                    const SolidMap& map, const CouplingOptions& opt,
+                                                    CouplingReport* report) {
   const auto start = std::chrono::steady_clock::now();
   CouplingReport total;
   total.fluid_degree = fluid.degree();
@@ -180,73 +238,57 @@ CsrMatrix assemble(const FluidSide& fluid, const SolidSide& solid, const SolidMa
   // Threads only where no evaluation goes back to the caller's Basis or map (they need not be thread-safe).
   const bool parallel = fluid.basis().fitted() && solid.basis().fitted() && map.degree() >= 1;
   const int threads = parallel ? std::max(1, std::min(opt.threads, 64)) : 1;
+  while (static_cast<int>(threads_.size()) < threads) threads_.push_back(std::make_unique<Thread>());
+  if (static_cast<int>(triplets_.size()) < threads) triplets_.resize(threads);
+  for (size_t t = threads; t < triplets_.size(); ++t) triplets_[t].clear();  // threads of a former call
   // The map into the fluid side's scaled coordinates.
   const ScaledMap scaled_map(map, fluid.scale());
   const SolidMap& fluid_map = fluid.scale() == 0 ? map : scaled_map;
   std::vector<std::unique_ptr<Assembler>> assemblers;
   for (int t = 0; t < threads; ++t)
-    assemblers.push_back(std::make_unique<Assembler>(integrand, fluid, solid, fluid_map, opt, total));
+    assemblers.push_back(std::make_unique<Assembler>(integrand, fluid, solid, fluid_map, opt, total,
+                                                     threads_[t]->search_on(fluid), triplets_[t]));
   total.setup_seconds = seconds_since(start);
 
   const int size = solid.mesh().size();
-  run_shares(assemblers, share_in_order(solid, static_cast<int>(static_cast<long long>(size) * opt.part / opt.parts),
-                                        static_cast<int>(static_cast<long long>(size) * (opt.part + 1) / opt.parts)));
+  run_shares(assemblers,
+             share_in_order(solid, static_cast<int>(static_cast<long long>(size) * opt.part / opt.parts),
+                            static_cast<int>(static_cast<long long>(size) * (opt.part + 1) / opt.parts), share_));
   total.pieces_seconds = seconds_since(start) - total.setup_seconds;
 
-  std::vector<std::vector<Triplet>> parts;
-  for (auto& a : assemblers) {
-    add_counts(a->report, total);
-    parts.push_back(std::move(a->triplets));
-  }
+  for (const auto& a : assemblers) add_counts(a->report, total);
   check_outside(opt, fluid.scale(), total);
-  CsrMatrix m = compress(solid.space().dof_count(), fluid.space().dof_count(), parts);
+  const CsrMatrix& m = matrix_.build(solid.space().dof_count(), fluid.space().dof_count(), triplets_);
   check_finite(m, opt);
   total.seconds = seconds_since(start);
   if (report) *report = total;
   return m;
 }
 
-void check_fluid_side(const FluidSide& fluid, const CouplingOptions& opt) {
-  if (opt.fluid_components != fluid.components()) throw Error("the fluid side was prepared for other components");
-}
-
-// The solid side prepared for this one call (its time counts as the call's setup), then the assembly.
-CsrMatrix assemble_on_solid(const FluidSide& fluid, const Mesh& solid, const Basis& multiplier, const SolidMap& map,
-                            const CouplingOptions& opt, CouplingReport* report) {
-  const auto start = std::chrono::steady_clock::now();
-  const SolidSide solid_side(solid, multiplier, opt.solid_components);
-  const double prepare = seconds_since(start);
-  CsrMatrix m = assemble(fluid, solid_side, map, opt, report);
-  if (report) {
-    report->setup_seconds += prepare;
-    report->seconds += prepare;
-  }
-  return m;
-}
-
-}  // namespace
-
-// Each entry point checks the options once, before anything is prepared.
 CsrMatrix assemble_coupling(const FluidSide& fluid, const SolidSide& solid, const SolidMap& map,
                             const CouplingOptions& opt, CouplingReport* report) {
-  check_options(fluid.space(), solid.space(), opt);
-  check_fluid_side(fluid, opt);
-  if (opt.solid_components != solid.components()) throw Error("the solid side was prepared for other components");
-  return assemble(fluid, solid, map, opt, report);
+  CouplingAssembly assembly;
+  assembly.assemble(fluid, solid, map, opt, report);
+  return assembly.release();
 }
 
+// The forms that prepare a side check the options first.
 CsrMatrix assemble_coupling(const FluidSide& fluid, const Mesh& solid, const Basis& multiplier, const SolidMap& map,
                             const CouplingOptions& opt, CouplingReport* report) {
   check_options(fluid.space(), multiplier, opt);
   check_fluid_side(fluid, opt);
-  return assemble_on_solid(fluid, solid, multiplier, map, opt, report);
+  return assemble_on_solid(solid, multiplier, opt, report, [&](CouplingAssembly& assembly, const SolidSide& side) {
+    AssemblyAccess::assemble(assembly, fluid, side, map, opt, report);
+  });
 }
 
 CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const Mesh& solid, const Basis& multiplier,
                             const SolidMap& map, const CouplingOptions& opt, CouplingReport* report) {
   check_options(fluid_space, multiplier, opt);
-  const FluidSide side(fluid, fluid_space, opt.fluid_components);
-  return assemble_on_solid(side, solid, multiplier, map, opt, report);
+  const FluidSide fluid_side(fluid, fluid_space, opt.fluid_components);
+  return assemble_on_solid(solid, multiplier, opt, report, [&](CouplingAssembly& assembly, const SolidSide& side) {
+    AssemblyAccess::assemble(assembly, fluid_side, side, map, opt, report);
+  });
 }
 
 }  // namespace dlmfsi

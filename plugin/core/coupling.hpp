@@ -1,5 +1,6 @@
 // Assembly of the fluid-solid coupling matrix of the distributed-Lagrange-multiplier method.
 #pragma once
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -58,5 +59,33 @@ CsrMatrix assemble_coupling(const FluidSide& fluid, const Mesh& solid, const Bas
 // The same, preparing both sides for this one call.
 CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const Mesh& solid, const Basis& multiplier,
                             const SolidMap& map, const CouplingOptions& options, CouplingReport* report = nullptr);
+
+// The assembly with its memory kept from call to call (grown, never shrunk), for a time loop that calls it
+// on the same sides with a moved map: each thread's triplets and search marks (kept while the fluid side
+// is the same), and the compressed rows with their buffers, whose values are summed in place when the
+// triplets fall on the last call's pattern (CsrBuilder). The result is assemble_coupling's, bit for bit.
+class CouplingAssembly {
+ public:
+  CouplingAssembly();
+  ~CouplingAssembly();
+  CouplingAssembly(const CouplingAssembly&) = delete;
+  CouplingAssembly& operator=(const CouplingAssembly&) = delete;
+  // assemble_coupling(fluid, solid, map, options, report); the matrix stays valid until the next call.
+  const CsrMatrix& assemble(const FluidSide& fluid, const SolidSide& solid, const SolidMap& map,
+                            const CouplingOptions& options, CouplingReport* report = nullptr);
+  // Did the last call keep the pattern of the one before (values written in place)?
+  bool kept_pattern() const { return matrix_.kept_pattern(); }
+  CsrMatrix release() { return matrix_.release(); }
+
+ private:
+  friend struct AssemblyAccess;  // assemble_coupling's other forms, which check the options themselves
+  const CsrMatrix& assemble_checked(const FluidSide& fluid, const SolidSide& solid, const SolidMap& map,
+                                    const CouplingOptions& options, CouplingReport* report);
+  struct Thread;
+  std::vector<std::unique_ptr<Thread>> threads_;
+  std::vector<std::vector<Triplet>> triplets_;  // per thread
+  std::vector<int> share_;                      // the solid triangles of part `part`, in order
+  CsrBuilder matrix_;
+};
 
 }  // namespace dlmfsi

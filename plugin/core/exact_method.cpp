@@ -12,10 +12,10 @@
 
 namespace dlmfsi {
 
-ExactMethod::ExactMethod(const FluidSide& fluid, int product_degree, int qforder, int subdivide,
+ExactMethod::ExactMethod(const FluidSide& fluid, FluidSearch& search, int product_degree, int qforder, int subdivide,
                          std::unique_ptr<PieceIntegrator> general, std::unique_ptr<PieceIntegrator> affine,
                          CouplingReport& counts)
-    : fluid_(fluid), search_(fluid.grid()), product_degree_(product_degree), qforder_(qforder),
+    : fluid_(fluid), search_(search), product_degree_(product_degree), qforder_(qforder),
       subdivide_(subdivide), general_(std::move(general)), affine_(std::move(affine)), counts_(counts) {}
 
 double ExactMethod::integrate(const MappedTriangle& mt, LocalBlock& block) {

@@ -19,9 +19,9 @@ namespace dlmfsi {
 
 class ExactMethod : public TriangleIntegrator {
  public:
-  // general integrates the pieces, except those of affine images when affine is given.
-  // qforder, subdivide: the options (-1 automatic).
-  ExactMethod(const FluidSide& fluid, int product_degree, int qforder, int subdivide,
+  // search: on fluid's grid. general integrates the pieces, except those of affine images when affine is
+  // given. qforder, subdivide: the options (-1 automatic).
+  ExactMethod(const FluidSide& fluid, FluidSearch& search, int product_degree, int qforder, int subdivide,
               std::unique_ptr<PieceIntegrator> general, std::unique_ptr<PieceIntegrator> affine,
               CouplingReport& counts);
   double integrate(const MappedTriangle& mt, LocalBlock& block) override;
@@ -36,7 +36,7 @@ class ExactMethod : public TriangleIntegrator {
   double clip(const ClippedImage& image, const Point img[3], LocalBlock& block);
 
   const FluidSide& fluid_;
-  FluidSearch search_;
+  FluidSearch& search_;
   int hint_ = 0;  // a fluid triangle near the last image, where the search starts
   int product_degree_, qforder_, subdivide_;
   std::unique_ptr<PieceIntegrator> general_, affine_;

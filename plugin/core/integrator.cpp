@@ -12,10 +12,11 @@
 namespace dlmfsi {
 
 std::unique_ptr<TriangleIntegrator> choose_integrator(const Integrand& integrand, const FluidSide& fluid,
-                                                      const SolidMap& map, const CouplingOptions& options,
-                                                      CouplingReport& counts) {
+                                                      FluidSearch& search, const SolidMap& map,
+                                                      const CouplingOptions& options, CouplingReport& counts) {
   if (options.method == CouplingOptions::Method::Quadrature)
-    return std::make_unique<QuadratureMethod>(fluid, integrand, map.degree(), options.qforder, options.tol, counts);
+    return std::make_unique<QuadratureMethod>(fluid, search, integrand, map.degree(), options.qforder, options.tol,
+                                              counts);
   const bool batch = integrand.fluid.fitted() && integrand.multiplier.fitted() && (integrand.chain || integrand.c1 == 0);
   std::unique_ptr<PieceIntegrator> general, affine;
   if (batch)
@@ -23,7 +24,7 @@ std::unique_ptr<TriangleIntegrator> choose_integrator(const Integrand& integrand
   else
     general = std::make_unique<PointIntegrator>(integrand, counts);
   if (batch && MomentIntegrator::applies(integrand)) affine = std::make_unique<MomentIntegrator>(integrand, counts);
-  return std::make_unique<ExactMethod>(fluid, integrand.product_degree, options.qforder, options.subdivide,
+  return std::make_unique<ExactMethod>(fluid, search, integrand.product_degree, options.qforder, options.subdivide,
                                        std::move(general), std::move(affine), counts);
 }
 

@@ -26,6 +26,7 @@
 namespace dlmfsi {
 
 class FluidSide;
+class FluidSearch;
 struct CouplingReport;
 
 // What every integrator of one call reads (shared by the threads). Space: BasisOf<D>; Fit: its fitted basis.
@@ -86,10 +87,11 @@ using TriangleIntegrator = ElementIntegratorOf<MappedTriangle>;
 //   not both bases fitted, or the listings' product         -> point by point
 //   both fitted, the chain rule (or c1 = 0)                  -> batches
 //   ... and both of degree <= 1, on affine images            -> moments
-// counts: the calling thread's report, which the integrators count pieces, points and rule degrees in.
+// search: the calling thread's search on the fluid side; counts: its report, which the integrators count
+// pieces, points and rule degrees in.
 std::unique_ptr<TriangleIntegrator> choose_integrator(const Integrand& integrand, const FluidSide& fluid,
-                                                      const SolidMap& map, const CouplingOptions& options,
-                                                      CouplingReport& counts);
+                                                      FluidSearch& search, const SolidMap& map,
+                                                      const CouplingOptions& options, CouplingReport& counts);
 
 // Images of triangles whose nonlinearity (map.hpp) is above this are split into parts on which it is at
 // most this (split.hpp), where nonlinear_rule_degree gives a rule of degree p + 20.

@@ -1,6 +1,7 @@
 // The coupling's entries of one solid element while its pieces are integrated: one row per local
 // multiplier dof, one column per global fluid dof of the fluid elements met so far.
 #pragma once
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -14,7 +15,13 @@ class LocalBlock {
   // the local dofs that carry coupled components (the others are never read nor written).
   LocalBlock(int multiplier_dofs, std::vector<int> used_rows, int fluid_dofs, std::vector<int> used_fluid_dofs);
 
-  // Starts the block of solid element k: its rows' global dofs from the multiplier space, no column yet.
+  // Starts the block of a solid element whose local multiplier dofs have the global dofs `dofs`: no
+  // column yet.
+  void start(const int* dofs) {
+    std::copy(dofs, dofs + rows_, row_dofs_.begin());
+    column_dofs_.clear();
+  }
+  // The same from the multiplier space's dofs of solid element k.
   template <class Space>
   void start(const Space& multiplier, int k) {
     multiplier.dofs(k, row_dofs_.data());

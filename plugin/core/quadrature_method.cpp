@@ -10,23 +10,20 @@
 
 namespace dlmfsi {
 
-QuadratureMethod::QuadratureMethod(const FluidSide& fluid, const Integrand& integrand, int map_degree, int qforder,
-                                   double tol, CouplingReport& counts)
-    : fluid_(fluid), search_(fluid.grid()), points_(integrand, counts), product_degree_(integrand.product_degree),
+QuadratureMethod::QuadratureMethod(const FluidSide& fluid, FluidSearch& search, const Integrand& integrand,
+                                   int map_degree, int qforder, double tol, CouplingReport& counts)
+    : fluid_(fluid), search_(search), points_(integrand, counts), product_degree_(integrand.product_degree),
       fluid_degree_(integrand.fluid_degree), multiplier_degree_(integrand.multiplier_degree), map_degree_(map_degree),
       qforder_(qforder),
       max_depth_(std::min(12, std::max(0, static_cast<int>(std::ceil(std::log(1 / std::max(tol, 1e-300)) / std::log(4.0)))))),
       counts_(counts) {}
 
 double QuadratureMethod::integrate(const MappedTriangle& mt, LocalBlock& block) {
-  struct Leaf {
-    Point ref[3], img[3];
-    int depth;
-  };
   const double solid_jacobian = area2(mt.solid[0], mt.solid[1], mt.solid[2]);  // ds = this * dxi
   const auto& rule = triangle_rule(rule_degree(mt));
   double outside = 0;
-  std::vector<Leaf> stack{{{{0, 0}, {1, 0}, {0, 1}}, {mt.image[0], mt.image[1], mt.image[2]}, 0}};
+  std::vector<Leaf>& stack = stack_;
+  stack.assign(1, {{{0, 0}, {1, 0}, {0, 1}}, {mt.image[0], mt.image[1], mt.image[2]}, 0});
   auto image_of = [&](Point xi) { return mt.affine ? from_reference(mt.image, xi) : mt.at(xi).x; };
   while (!stack.empty()) {
     const Leaf s = stack.back();

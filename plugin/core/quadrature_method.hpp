@@ -7,6 +7,8 @@
 // integrates exactly (the product's degree where the map is affine; qforder overrides; a map of unknown
 // degree gets nonlinear_rule_degree). Points whose image lies outside the fluid mesh count as area outside.
 #pragma once
+#include <vector>
+
 #include "fluid_search.hpp"
 #include "integrate_points.hpp"
 
@@ -14,9 +16,10 @@ namespace dlmfsi {
 
 class QuadratureMethod : public TriangleIntegrator {
  public:
-  // qforder: the option (-1 automatic); tol: the leaves' smallest relative area; map_degree: SolidMap::degree().
-  QuadratureMethod(const FluidSide& fluid, const Integrand& integrand, int map_degree, int qforder, double tol,
-                   CouplingReport& counts);
+  // search: on fluid's grid; qforder: the option (-1 automatic); tol: the leaves' smallest relative area;
+  // map_degree: SolidMap::degree().
+  QuadratureMethod(const FluidSide& fluid, FluidSearch& search, const Integrand& integrand, int map_degree,
+                   int qforder, double tol, CouplingReport& counts);
   double integrate(const MappedTriangle& mt, LocalBlock& block) override;
 
  private:
@@ -24,12 +27,18 @@ class QuadratureMethod : public TriangleIntegrator {
   // Do the three points lie in one closed fluid triangle?
   bool one_fluid_triangle(const Point img[3]);
 
+  struct Leaf {
+    Point ref[3], img[3];
+    int depth;
+  };
+
   const FluidSide& fluid_;
-  FluidSearch search_;
+  FluidSearch& search_;
   int hint_ = 0;
   PointIntegrator points_;
   int product_degree_, fluid_degree_, multiplier_degree_, map_degree_, qforder_, max_depth_;
   CouplingReport& counts_;
+  std::vector<Leaf> stack_;
 };
 
 }  // namespace dlmfsi

@@ -32,8 +32,11 @@ class FluidSide {
   const PolynomialBasis& basis() const { return basis_; }
   // The global dofs of triangle k (space().local_dofs() of them).
   const int* dofs(int k) const { return &dofs_[static_cast<size_t>(k) * space_.local_dofs()]; }
+  // A number no other side of this process has had: what a cache of the side's data is keyed on.
+  long serial() const { return serial_; }
 
  private:
+  long serial_;
   int scale_;
   ScaledBasis scaled_space_;
   RenumberedBasis space_;  // holds the order; before mesh_, which is built from it
@@ -62,14 +65,19 @@ class SolidSide {
   // triangles lie close together, so the search walks little from one to the next and the fluid data it
   // touches stays in cache, whatever order the mesh generator left them in.
   const std::vector<int>& order() const { return order_; }
+  // The global multiplier dofs of triangle k (space().local_dofs() of them).
+  const int* dofs(int k) const { return &dofs_[static_cast<size_t>(k) * space_.local_dofs()]; }
+  long serial() const { return serial_; }
 
  private:
+  long serial_;
   Mesh mesh_;
   const Basis& space_;
   std::vector<int> components_;
   int degree_;
   PolynomialBasis basis_;
   std::vector<int> order_;
+  std::vector<int> dofs_;
 };
 
 }  // namespace dlmfsi

@@ -35,3 +35,58 @@ TEST(Sparse, CompressSumsDuplicatesAndSortsRows) {
       ASSERT_NEAR(m.value[e], it->second, 1e-12 * (1 + std::abs(it->second)));
     }
 }
+
+namespace {
+
+std::vector<std::vector<Triplet>> random_parts(unsigned seed, int rows, int cols, int count) {
+  std::mt19937_64 rng(seed);
+  std::vector<std::vector<Triplet>> parts(2);
+  for (int e = 0; e < count; ++e)
+    parts[rng() % 2].push_back({static_cast<int>(rng() % rows), static_cast<int>(rng() % cols),
+                                static_cast<double>(rng() % 1000) / 7 + 1});
+  return parts;
+}
+
+// The same triplets with new values (the pattern kept).
+void revalue(std::vector<std::vector<Triplet>>& parts, double scale) {
+  for (auto& p : parts)
+    for (Triplet& t : p) t.value = t.value * scale + 0.25;
+}
+
+}  // namespace
+
+// A builder kept across builds gives compress's matrix bit for bit each time; on the same pattern it sums
+// the values in place, and a pattern that gains or loses an entry is rebuilt.
+TEST(Sparse, BuilderSumsInPlaceOnTheSamePatternOnly) {
+  const int rows = 30, cols = 50;
+  auto parts = random_parts(5, rows, cols, 400);
+  CsrBuilder builder;
+  auto expect_compress = [&](bool kept) {
+    const CsrMatrix want = compress(rows, cols, parts);
+    const CsrMatrix& got = builder.build(rows, cols, parts);
+    EXPECT_EQ(builder.kept_pattern(), kept);
+    EXPECT_EQ(got.start, want.start);
+    EXPECT_EQ(got.column, want.column);
+    EXPECT_EQ(got.value, want.value);
+  };
+  expect_compress(false);
+  revalue(parts, 3);
+  expect_compress(true);
+  // the triplets in another order, some repeated: the same pattern, sums in the new order
+  std::swap(parts[0][3], parts[1][7]);
+  parts[1].push_back(parts[0][0]);
+  expect_compress(true);
+  // a new entry: rebuilt
+  Triplet extra{0, 0, 1};
+  while (compress(rows, cols, parts).at(extra.row, extra.col) != 0) ++extra.col;
+  parts[0].push_back(extra);
+  expect_compress(false);
+  // an entry gone: rebuilt
+  parts[0].pop_back();
+  expect_compress(false);
+  // another shape: rebuilt
+  const auto other = random_parts(6, rows + 1, cols, 100);
+  const CsrMatrix want = compress(rows + 1, cols, other);
+  EXPECT_EQ(builder.build(rows + 1, cols, other).value, want.value);
+  EXPECT_FALSE(builder.kept_pattern());
+}
