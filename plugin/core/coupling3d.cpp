@@ -137,6 +137,7 @@ class Assembler3 {
     fwidth_ = static_cast<int>(fpoly_.functions().size());
     swidth_ = static_cast<int>(spoly_.functions().size());
     linear_ = fpoly_.fitted() && spoly_.fitted() && fpoly_.degree() <= 1 && spoly_.degree() <= 1 && !listing_;
+    find_pair_twins();
     sdofs_.resize(ns_);
     fcol_.resize(nf_);
   }
@@ -310,9 +311,13 @@ class Assembler3 {
     const int n = static_cast<int>(points_.size());
     report.points += n;
     evaluate_points(kf, mt, n);
+    // Pairs that repeat an earlier pair's functions (on elements of the shared fits) copy its sums.
+    const bool twins = !listing_ && fpoly_.fitted() && spoly_.fitted() && fpoly_.shared(kf) && spoly_.shared(mt.k);
+    const std::vector<char>& used = twins ? fluid_used_by_sources_ : fluid_used_by_pairs_;
     // fluid values and chain-rule gradients with the weights folded in
     const double(&aj)[3][3] = mt.affine_value.jac;
     for (int f = 0; f < fwidth_; ++f) {
+      if (!used[f]) continue;
       double* v = &fval_[static_cast<size_t>(f) * n];
       double* g[3] = {&fgrad_[(3 * static_cast<size_t>(f)) * n], &fgrad_[(3 * static_cast<size_t>(f) + 1) * n],
                       &fgrad_[(3 * static_cast<size_t>(f) + 2) * n]};
@@ -326,6 +331,7 @@ class Assembler3 {
       }
     }
     for (size_t p = 0; p < pair_fluid_.size(); ++p) {
+      if (twins && pair_source_[p] >= 0) continue;  // added with its source
       const std::vector<int>&fi = pair_fluid_[p], &si = pair_solid_[p];
       for (size_t a = 0; a < fi.size(); ++a) {
         const double* phi = &fval_[static_cast<size_t>(fi[a]) * n];
@@ -339,6 +345,8 @@ class Assembler3 {
           if (gradients_ && !listing_)
             for (int q = 0; q < n; ++q) sum += gpsi[q] * gphi[q] + gpsi[n + q] * gphi[n + q] + gpsi[2 * n + q] * gphi[2 * n + q];
           col[b] += sum;
+          if (twins)
+            for (int copy : pair_copies_[p]) pair_column(copy, a)[b] += sum;
         }
       }
     }
@@ -406,6 +414,35 @@ class Assembler3 {
     }
   }
 
+  // Pair q repeats an earlier pair p when, function by function, both sides' functions are twins (or the
+  // same): on elements of the shared fits its sums are p's, bit for bit (the components of vector spaces of
+  // one element, as in the listings). Also which fluid functions any pair reads, and the computed pairs.
+  void find_pair_twins() {
+    const size_t np = pair_fluid_.size();
+    pair_source_.assign(np, -1);
+    pair_copies_.assign(np, {});
+    auto rep = [](const PolynomialBasis3& poly, int f) { return poly.twin(f) >= 0 ? poly.twin(f) : f; };
+    auto same = [&](const std::vector<int>& x, const std::vector<int>& y, const PolynomialBasis3& poly) {
+      if (x.size() != y.size()) return false;
+      for (size_t i = 0; i < x.size(); ++i)
+        if (rep(poly, x[i]) != rep(poly, y[i])) return false;
+      return true;
+    };
+    for (size_t q = 0; q < np; ++q)
+      for (size_t p = 0; p < q && pair_source_[q] < 0; ++p)
+        if (pair_source_[p] < 0 && same(pair_fluid_[p], pair_fluid_[q], fpoly_) && same(pair_solid_[p], pair_solid_[q], spoly_)) {
+          pair_source_[q] = static_cast<int>(p);
+          pair_copies_[p].push_back(static_cast<int>(q));
+        }
+    fluid_used_by_pairs_.assign(fwidth_, 0);
+    fluid_used_by_sources_.assign(fwidth_, 0);
+    for (size_t p = 0; p < np; ++p)
+      for (int f : pair_fluid_[p]) {
+        fluid_used_by_pairs_[f] = 1;
+        if (pair_source_[p] < 0) fluid_used_by_sources_[f] = 1;
+      }
+  }
+
   // The block's entries of pair p's a-th fluid dof, from the pair's first multiplier dof on.
   double* pair_column(size_t p, size_t a) {
     return &block_[static_cast<size_t>(fcol_[frange_[p].first + static_cast<int>(a)]) * ns_ + srange_[p].first];
@@ -448,6 +485,9 @@ class Assembler3 {
   bool gradients_ = false, listing_ = false, linear_ = false;
   std::vector<Range> frange_, srange_;
   std::vector<std::vector<int>> pair_fluid_, pair_solid_;  // per pair: fitted-function index of each local dof
+  std::vector<int> pair_source_;               // per pair: the earlier pair it repeats, or -1
+  std::vector<std::vector<int>> pair_copies_;  // per pair: the later pairs that repeat it
+  std::vector<char> fluid_used_by_pairs_, fluid_used_by_sources_;  // per fitted fluid function
   std::vector<int> fluid_used_, solid_used_, sdofs_, fcol_, columns_;
   std::vector<double> block_;  // column-major, ns_ rows per column of columns_ (and spare)
   std::vector<PointData> points_;

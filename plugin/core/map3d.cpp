@@ -172,14 +172,13 @@ void MappedTet::polynomial(Point3 xi, Point3& x, Point3 d[3]) const {
   monomial_values3(degree_, xi, v);
   double s[3] = {0, 0, 0}, g[3][3] = {};
   const auto& derivative = monomial_derivatives3(degree_);
-  double vd[monomial_count3(kMaxDegree)];  // the monomials of degree - 1 are the first ones of v
-  std::copy(v, v + (degree_ > 0 ? monomial_count3(degree_ - 1) : 0), vd);
   for (int m = 0; m < nm; ++m) {
     for (int a = 0; a < 3; ++a) s[a] += c_[a][m] * v[m];
     for (int i = 0; i < 3; ++i) {
+      // d/dxi_i of monomial m: factor times monomial j of degree - 1, the first ones of v
       const int j = derivative[m].index[i];
       if (j < 0) continue;
-      const double dm = derivative[m].factor[i] * vd[j];
+      const double dm = derivative[m].factor[i] * v[j];
       for (int a = 0; a < 3; ++a) g[i][a] += c_[a][m] * dm;
     }
   }

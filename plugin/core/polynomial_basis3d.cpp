@@ -59,6 +59,11 @@ PolynomialBasis3::PolynomialBasis3(const Basis3& basis, const Mesh3& mesh, int d
     degree_ = -1;
     return;
   }
+  twin_.assign(functions_.size(), -1);
+  for (size_t f = 1; f < functions_.size(); ++f)
+    for (size_t g = 0; g < f && twin_[f] < 0; ++g)
+      if (twin_[g] < 0 && std::equal(&reference_[f * nm_], &reference_[f * nm_] + nm_, &reference_[g * nm_]))
+        twin_[f] = static_cast<int>(g);
   for (int k = 1; k < mesh.size(); ++k) check(k);
 }
 
@@ -116,7 +121,9 @@ void PolynomialBasis3::evaluate_points(int k, const Point3* xi, int n, double* v
     for (int m = 0; m < nm; ++m) mono[static_cast<size_t>(m) * n + p] = v[m];
   }
   if (gradient && ref.size() < 3 * static_cast<size_t>(nm1 > 0 ? nm1 : 1)) ref.resize(3 * static_cast<size_t>(nm1 > 0 ? nm1 : 1));
+  const bool twins = shared(k) && !twin_.empty();
   for (size_t f = 0; f < width; ++f) {
+    if (twins && twin_[f] >= 0) continue;  // copied below
     const double* c = coef + f * nm;
     double* out = value + f * n;
     for (int p = 0; p < n; ++p) out[p] = c[0];  // monomial 0 is 1
@@ -144,6 +151,13 @@ void PolynomialBasis3::evaluate_points(int k, const Point3* xi, int n, double* v
       // d phi / d x_j = sum_i d phi / d xi_i  d xi_i / d x_j
       for (int a = 0; a < 3; ++a) g[a][p] = r[0] * j[a] + r[1] * j[3 + a] + r[2] * j[6 + a];
     }
+  }
+  if (!twins) return;
+  for (size_t f = 0; f < width; ++f) {
+    const int t = twin_[f];
+    if (t < 0) continue;
+    std::copy(value + t * n, value + (t + 1) * n, value + f * n);
+    if (gradient) std::copy(gradient + 3 * t * n, gradient + 3 * (t + 1) * n, gradient + 3 * f * n);
   }
 }
 

@@ -47,6 +47,9 @@ class PolynomialBasis3 {
   const double* inverse_jacobian(int k) const { return &inverse_jacobian_[9 * static_cast<size_t>(k)]; }
   // Does element k use the shared fit (that of element 0)?
   bool shared(int k) const { return slot_[k] < 0; }
+  // On elements of the shared fit, function f equals function twin(f) (an earlier one, with the same
+  // coefficients bit for bit) when twin(f) >= 0: the components of a vector space of one element.
+  int twin(int f) const { return twin_.empty() ? -1 : twin_[f]; }
   // Monomial coefficients (monomial_count3(degree) per function, in functions() order) on element k.
   const double* coefficients(int k) const { return slot_[k] < 0 ? reference_.data() : &own_[slot_[k]]; }
 
@@ -58,6 +61,7 @@ class PolynomialBasis3 {
   int degree_, nm_ = 0, nc_;
   std::vector<int> functions_;
   std::vector<double> reference_;  // the shared fit
+  std::vector<int> twin_;          // per function: an earlier function with the same shared fit, or -1
   std::vector<int> slot_;          // per element: -1 shared fit, else offset in own_
   std::vector<double> own_;        // element fits that differ from the shared one
   std::vector<double> inverse_jacobian_;  // per element: d xi / d x, 9 entries

@@ -24,19 +24,18 @@ inline int orient3d(Point3 a, Point3 b, Point3 c, Point3 d);
 int orient3d_exact(Point3 a, Point3 b, Point3 c, Point3 d);
 
 // The determinant det [b - a, c - a, d - a] in floating point, and a bound on its error: Shewchuk's
-// o3derrboundA = (7 + 56 eps) eps (eps = 2^-53) times the permanent, plus 2^-1068 (1 + max |b - a, c - a,
-// d - a|) for products that underflow (a product of two differences below 2^-1022 loses at most 2^-1075
-// before it is multiplied by the third). On overflow the bound is inf or NaN.
+// o3derrboundA = (7 + 56 eps) eps (eps = 2^-53) times the permanent, plus 2^-1072 (1 + |u|_1), u = b - a,
+// for products that underflow: each 2 x 2 minor of c - a and d - a loses at most 2^-1074 to underflow
+// before it is multiplied by a component of u, and each of those three products 2^-1075 more (sums of
+// subnormal numbers are exact). On overflow the bound is inf or NaN.
 inline double orient3d_estimate(Point3 a, Point3 b, Point3 c, Point3 d, double& bound) {
   const Point3 u = b - a, v = c - a, w = d - a;
   const double t1 = v.y * w.z, t2 = v.z * w.y, t3 = v.z * w.x, t4 = v.x * w.z, t5 = v.x * w.y, t6 = v.y * w.x;
   const double det = u.x * (t1 - t2) + u.y * (t3 - t4) + u.z * (t5 - t6);
-  const double permanent = std::fabs(u.x) * (std::fabs(t1) + std::fabs(t2)) +
-                           std::fabs(u.y) * (std::fabs(t3) + std::fabs(t4)) +
-                           std::fabs(u.z) * (std::fabs(t5) + std::fabs(t6));
-  const double largest = std::max({std::fabs(u.x), std::fabs(u.y), std::fabs(u.z), std::fabs(v.x), std::fabs(v.y),
-                                   std::fabs(v.z), std::fabs(w.x), std::fabs(w.y), std::fabs(w.z)});
-  bound = 7.7715611723761e-16 * permanent + 0x1p-1068 * (1 + largest);
+  const double ax = std::fabs(u.x), ay = std::fabs(u.y), az = std::fabs(u.z);
+  const double permanent = ax * (std::fabs(t1) + std::fabs(t2)) + ay * (std::fabs(t3) + std::fabs(t4)) +
+                           az * (std::fabs(t5) + std::fabs(t6));
+  bound = 7.7715611723761e-16 * permanent + 0x1p-1072 * (1 + ax + ay + az);
   return det;
 }
 
@@ -56,11 +55,11 @@ inline int orient3d_filter(Point3 a, Point3 b, Point3 c, Point3 d) {
 double orient3d_value(Point3 a, Point3 b, Point3 c, Point3 d);
 
 // The 2D counterparts for points of a plane seen in a coordinate projection: det [b - a, c - a] with the
-// bound (3 + 16 eps) eps times the permanent plus 2^-1070 (1 + max |difference|), and its exact value.
+// bound (3 + 16 eps) eps times the permanent plus 2^-1073 (each of the two products loses at most 2^-1075
+// to underflow), and its exact value.
 inline double orient2d_estimate(Point a, Point b, Point c, double& bound) {
   const double l = (b.x - a.x) * (c.y - a.y), r = (b.y - a.y) * (c.x - a.x);
-  const double largest = std::max({std::fabs(b.x - a.x), std::fabs(b.y - a.y), std::fabs(c.x - a.x), std::fabs(c.y - a.y)});
-  bound = 3.3306690738754716e-16 * (std::fabs(l) + std::fabs(r)) + 0x1p-1070 * (1 + largest);
+  bound = 3.3306690738754716e-16 * (std::fabs(l) + std::fabs(r)) + 0x1p-1073;
   return l - r;
 }
 double orient2d_value(Point a, Point b, Point c);
@@ -75,8 +74,7 @@ inline int orient3d(Point3 a, Point3 b, Point3 c, Point3 d) {
 // same bound: each term a difference times a minor of the other two differences), the exact path too.
 struct PlaneSide {
   Point3 p, q, r;
-  Point3 n, pn;        // the minors' differences (q - p) x (r - p) and the sums of their absolute values
-  double largest = 0;  // max |component| of q - p and r - p
+  Point3 n, pn;  // the minors' differences (q - p) x (r - p) and the sums of their absolute values
   void set(Point3 a, Point3 b, Point3 c) {
     p = a;
     q = b;
@@ -85,14 +83,13 @@ struct PlaneSide {
     const double t1 = u.y * v.z, t2 = u.z * v.y, t3 = u.z * v.x, t4 = u.x * v.z, t5 = u.x * v.y, t6 = u.y * v.x;
     n = {t1 - t2, t3 - t4, t5 - t6};
     pn = {std::fabs(t1) + std::fabs(t2), std::fabs(t3) + std::fabs(t4), std::fabs(t5) + std::fabs(t6)};
-    largest = std::max({std::fabs(u.x), std::fabs(u.y), std::fabs(u.z), std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
   }
   int sign(Point3 x) const {
     const Point3 w = x - p;
     const double det = w.x * n.x + w.y * n.y + w.z * n.z;
-    const double permanent = std::fabs(w.x) * pn.x + std::fabs(w.y) * pn.y + std::fabs(w.z) * pn.z;
-    const double big = std::max({largest, std::fabs(w.x), std::fabs(w.y), std::fabs(w.z)});
-    const double bound = 7.7715611723761e-16 * permanent + 0x1p-1068 * (1 + big);
+    const double ax = std::fabs(w.x), ay = std::fabs(w.y), az = std::fabs(w.z);
+    const double permanent = ax * pn.x + ay * pn.y + az * pn.z;
+    const double bound = 7.7715611723761e-16 * permanent + 0x1p-1072 * (1 + ax + ay + az);
     if (det > bound) return 1;
     if (-det > bound) return -1;
     return orient3d_exact(p, q, r, x);

@@ -178,6 +178,20 @@ std::vector<RulePoint3> make_tetrahedron_rule(int degree) {
   } else if (degree == 2) {
     const double a = (5 - std::sqrt(5.0)) / 20, b = 1 - 3 * a;
     for (Point3 p : {Point3{a, a, a}, Point3{b, a, a}, Point3{a, b, a}, Point3{a, a, b}}) r.push_back({p, 0.25});
+  } else if (degree == 4 || degree == 5) {
+    // The symmetric 14-point rule of degree 5: two orbits (a, a, a, 1 - 3a) and one (b, b, 1/2 - b, 1/2 - b)
+    // in barycentric coordinates; nodes and weights solved here from the six moment equations of the
+    // symmetric polynomials of degree <= 5 (1, e2, e3, e2^2, e4, e2 e3), to round-off.
+    auto orbit4 = [&r](double a, double w) {
+      const double c = 1 - 3 * a;
+      for (Point3 p : {Point3{a, a, a}, Point3{c, a, a}, Point3{a, c, a}, Point3{a, a, c}}) r.push_back({p, w});
+    };
+    orbit4(0.09273525031089248, 0.07349304311636379);
+    orbit4(0.31088591926330084, 0.11268792571801808);
+    const double b = 0.045503704125646534, c = 0.5 - b, w = 0.04254602077707878;
+    // barycentric (l0, l1, l2, l3) with two entries b and two c; xi = (l1, l2, l3)
+    for (Point3 p : {Point3{b, c, c}, Point3{c, b, c}, Point3{c, c, b}, Point3{c, b, b}, Point3{b, c, b}, Point3{b, b, c}})
+      r.push_back({p, w});
   } else {
     const int n = (degree + 2) / 2;
     std::vector<double> xu, wu, xv, wv, xw, ww;

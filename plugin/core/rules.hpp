@@ -36,7 +36,7 @@ struct RulePoint3 {
 
 // A rule exact for polynomials of total degree <= degree (0 <= degree <= 40), all weights positive.
 // Degrees 0-1: the centroid; 2: the symmetric 4-point rule (barycentric (a, a, a, 1 - 3a), a = (5 - sqrt 5)
-// / 20); from 3 on a collapsed
+// / 20); 4 and 5: the symmetric 14-point rule; 3 and from 6 on a collapsed
 // (Duffy) product of Gauss-Jacobi rules (degree 3: 8 points),
 //   int_T f = int_0^1 int_0^1 int_0^1 f(u, (1-u) v, (1-u)(1-v) w) (1-u)^2 (1-v) dw dv du,
 // with ceil((degree + 1) / 2) points in each direction (weights (1-u)^2, (1-v) and 1 in the rules).
