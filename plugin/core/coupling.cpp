@@ -258,7 +258,9 @@ const CsrMatrix& CouplingAssembly::assemble_checked(const FluidSide& fluid, cons
 
   for (const auto& a : assemblers) add_counts(a->report, total);
   check_outside(opt, fluid.scale(), total);
-  const CsrMatrix& m = matrix_.build(solid.space().dof_count(), fluid.space().dof_count(), triplets_);
+  // The compression touches neither the caller's Basis nor the map: on the requested threads.
+  const CsrMatrix& m = matrix_.build(solid.space().dof_count(), fluid.space().dof_count(), triplets_,
+                                     std::max(1, std::min(opt.threads, 64)));
   check_finite(m, opt);
   total.seconds = seconds_since(start);
   if (report) *report = total;

@@ -13,25 +13,29 @@ LocalBlock::LocalBlock(int multiplier_dofs, std::vector<int> used_rows, int flui
 void LocalBlock::enter_fluid_element(const int* dofs) {
   for (int j : used_fluid_dofs_) {
     const int g = dofs[j];
-    const auto it = std::find(column_dofs_.begin(), column_dofs_.end(), g);
-    if (it != column_dofs_.end()) {
-      column_of_[j] = static_cast<int>(it - column_dofs_.begin());
-      continue;
+    const int columns = static_cast<int>(column_dofs_.size());
+    int c = 0;
+    while (c < columns && column_dofs_[c] != g) ++c;
+    if (c == columns) {  // a new column: its entries are zero already
+      column_dofs_.push_back(g);
+      const size_t needed = column_dofs_.size() * rows_;
+      if (entries_.size() < needed) entries_.resize(2 * needed, 0.0);
     }
-    column_dofs_.push_back(g);
-    const size_t used = (column_dofs_.size() - 1) * rows_;  // the entries grow by one zero column
-    if (entries_.size() < used + rows_) entries_.resize(2 * (used + rows_));
-    std::fill(entries_.begin() + used, entries_.begin() + used + rows_, 0.0);
-    column_of_[j] = static_cast<int>(column_dofs_.size()) - 1;
+    column_of_[j] = c;
   }
 }
 
-void LocalBlock::scatter(std::vector<Triplet>& out) const {
-  for (int i : used_rows_)
-    for (size_t c = 0; c < column_dofs_.size(); ++c) {
-      const double v = entries_[c * rows_ + i];
-      if (v != 0.0) out.push_back({row_dofs_[i], column_dofs_[c], v});
+void LocalBlock::scatter(std::vector<Triplet>& out) {
+  const size_t columns = column_dofs_.size();
+  for (int i : used_rows_) {
+    const int row = row_dofs_[i];
+    double* entry = &entries_[i];
+    for (size_t c = 0; c < columns; ++c, entry += rows_) {
+      if (*entry == 0.0) continue;
+      out.push_back({row, column_dofs_[c], *entry});
+      *entry = 0.0;
     }
+  }
 }
 
 }  // namespace dlmfsi
