@@ -1,15 +1,14 @@
 // Assembly of the fluid-solid coupling matrix of the distributed-Lagrange-multiplier method.
 #pragma once
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "basis.hpp"
-#include "fluid_search.hpp"
 #include "map.hpp"
 #include "mesh.hpp"
 #include "options.hpp"
-#include "polynomial_basis.hpp"
-#include "scale.hpp"
+#include "sides.hpp"
 #include "sparse.hpp"
 
 namespace dlmfsi {
@@ -24,67 +23,6 @@ struct CouplingReport {
   int fluid_degree = 0, solid_degree = 0, rule_degree = 0, curved_rule_degree = 0;  // curved: the highest used
   double seconds = 0, setup_seconds = 0, pieces_seconds = 0;  // total; bases and grid; clipping and integration
   std::string summary() const;
-};
-
-// The fluid side of the coupling: the mesh (with adjacency), its search grid and its basis fitted on the
-// coupled components. Built once and reused for every map while the fluid mesh and space stay the same
-// (a time loop on a fixed fluid mesh).
-class FluidSide {
- public:
-  FluidSide(Mesh mesh, const Basis& space, const std::vector<int>& components);
-  FluidSide(const FluidSide&) = delete;
-  FluidSide& operator=(const FluidSide&) = delete;
-  // The fluid mesh with its triangles along a Morton curve (vertices in order of first use), and the space
-  // on those triangles: triangle k here is the caller's triangle space().original()[k]. Nearby triangles
-  // lie close in memory, which keeps large fluid meshes in the caches. The coordinates are the caller's
-  // times 2^-scale() (scale.hpp), the space's derivatives the caller's times 2^scale().
-  const Mesh& mesh() const { return mesh_; }
-  int scale() const { return scale_; }
-  const RenumberedBasis& space() const { return space_; }
-  const std::vector<int>& components() const { return components_; }
-  int degree() const { return degree_; }
-  const FluidGrid& grid() const { return grid_; }
-  const PolynomialBasis& basis() const { return basis_; }
-  // The global dofs of triangle k (space().local_dofs() of them).
-  const int* dofs(int k) const { return &dofs_[static_cast<size_t>(k) * space_.local_dofs()]; }
-
- private:
-  int scale_;
-  ScaledBasis scaled_space_;
-  RenumberedBasis space_;  // holds the order; before mesh_, which is built from it
-  Mesh mesh_;
-  std::vector<int> components_;
-  int degree_;
-  FluidGrid grid_;
-  PolynomialBasis basis_;
-  std::vector<int> dofs_;
-};
-
-// The solid side: the solid mesh (reference configuration) and the multiplier basis fitted on the coupled
-// components. Built once and reused for every map while the solid mesh and the multiplier space stay the
-// same (a time loop: only the map moves).
-class SolidSide {
- public:
-  SolidSide(Mesh mesh, const Basis& multiplier, const std::vector<int>& components);
-  SolidSide(const SolidSide&) = delete;
-  SolidSide& operator=(const SolidSide&) = delete;
-  const Mesh& mesh() const { return mesh_; }
-  const Basis& space() const { return space_; }
-  const std::vector<int>& components() const { return components_; }
-  int degree() const { return degree_; }
-  const PolynomialBasis& basis() const { return basis_; }
-  // The solid triangles along a space-filling (Morton) curve through their centroids: consecutive
-  // triangles lie close together, so the search walks little from one to the next and the fluid data it
-  // touches stays in cache, whatever order the mesh generator left them in.
-  const std::vector<int>& order() const { return order_; }
-
- private:
-  Mesh mesh_;
-  const Basis& space_;
-  std::vector<int> components_;
-  int degree_;
-  PolynomialBasis basis_;
-  std::vector<int> order_;
 };
 
 // B_ij = int_{solid} c1 grad_s psi_i : grad_s (phi_j o X) + c2 psi_i . (phi_j o X) ds,
@@ -103,7 +41,9 @@ class SolidSide {
 // chords is lost, an error falling 4x per level.
 // Quadrature method: a composite rule on each solid triangle, refined where the images of a
 // sub-triangle's corners do not share one fluid triangle, down to tol of its area; the true map at every point.
+// (exact_method.hpp and quadrature_method.hpp; integrator.hpp: the integrators and how they are chosen.)
 // The fluid coordinates are scaled by a power of two where their size calls for it (scale.hpp).
+// The options are checked once per call, before anything is prepared.
 // Errors (Error, naming the option or the triangle): bad options or components (validation.hpp), a fluid
 // mesh that overlaps itself or is not conforming, a non-finite, inverted, flat or folded map, solid
 // triangles beyond 1e-150..1e150 in size, a mapped solid outside the fluid mesh by more than outside_tol
@@ -119,5 +59,33 @@ CsrMatrix assemble_coupling(const FluidSide& fluid, const Mesh& solid, const Bas
 // The same, preparing both sides for this one call.
 CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const Mesh& solid, const Basis& multiplier,
                             const SolidMap& map, const CouplingOptions& options, CouplingReport* report = nullptr);
+
+// The assembly with its memory kept from call to call (grown, never shrunk), for a time loop that calls it
+// on the same sides with a moved map: each thread's triplets and search marks (kept while the fluid side
+// is the same), and the compressed rows with their buffers, whose values are summed in place when the
+// triplets fall on the last call's pattern (CsrBuilder). The result is assemble_coupling's, bit for bit.
+class CouplingAssembly {
+ public:
+  CouplingAssembly();
+  ~CouplingAssembly();
+  CouplingAssembly(const CouplingAssembly&) = delete;
+  CouplingAssembly& operator=(const CouplingAssembly&) = delete;
+  // assemble_coupling(fluid, solid, map, options, report); the matrix stays valid until the next call.
+  const CsrMatrix& assemble(const FluidSide& fluid, const SolidSide& solid, const SolidMap& map,
+                            const CouplingOptions& options, CouplingReport* report = nullptr);
+  // Did the last call keep the pattern of the one before (values written in place)?
+  bool kept_pattern() const { return matrix_.kept_pattern(); }
+  CsrMatrix release() { return matrix_.release(); }
+
+ private:
+  friend struct AssemblyAccess;  // assemble_coupling's other forms, which check the options themselves
+  const CsrMatrix& assemble_checked(const FluidSide& fluid, const SolidSide& solid, const SolidMap& map,
+                                    const CouplingOptions& options, CouplingReport* report);
+  struct Thread;
+  std::vector<std::unique_ptr<Thread>> threads_;
+  std::vector<std::vector<Triplet>> triplets_;  // per thread
+  std::vector<int> share_;                      // the solid triangles of part `part`, in order
+  CsrBuilder matrix_;
+};
 
 }  // namespace dlmfsi

@@ -3,7 +3,7 @@
 //   matrix B = dlmfsi(Vf, Vs, [X, Y], c1=1, c2=10, fluid=[0,1], solid=[0,1]);  // rows Vs, columns Vf
 //
 // It converts meshes and spaces into the core's arrays and Basis evaluators (FreeFEM's own basis
-// functions, so any element works), calls dlmfsi::assemble_coupling, and turns every C++ exception into
+// functions, so any element works), calls dlmfsi's assembly, and turns every C++ exception into
 // a FreeFEM ExecError that a script can catch.
 #include "ff++.hpp"
 
@@ -158,6 +158,13 @@ SolidCache& solid_cache() {
   return *cache;
 }
 
+// The assembly's memory (triplets, search marks, compressed rows), kept from call to call next to the
+// sides: a time loop takes no fresh memory for it.
+dlmfsi::CouplingAssembly& assembly() {
+  static dlmfsi::CouplingAssembly* kept = new dlmfsi::CouplingAssembly;  // never destroyed, as the caches
+  return *kept;
+}
+
 class DlmfsiOp : public E_F0mps {
  public:
   typedef newpMatrice_Creuse<double> Result;
@@ -216,7 +223,7 @@ class DlmfsiOp : public E_F0mps {
   bool given(int i, const std::vector<Expression>& list) const { return nargs[i] || !list.empty(); }
   std::vector<int> components(int i, const std::vector<Expression>& list, const char* side, Stack stack) const;
   dlmfsi::CouplingOptions options(Stack stack) const;
-  dlmfsi::CsrMatrix assemble(Stack stack, const dlmfsi::CouplingOptions& opt) const;
+  const dlmfsi::CsrMatrix& assemble(Stack stack, const dlmfsi::CouplingOptions& opt) const;
 };
 
 basicAC_F0::name_and_type DlmfsiOp::name_param[n_name_param] = {
@@ -305,7 +312,7 @@ dlmfsi::CouplingOptions DlmfsiOp::options(Stack stack) const {
   return o;
 }
 
-dlmfsi::CsrMatrix DlmfsiOp::assemble(Stack stack, const dlmfsi::CouplingOptions& opt) const {
+const dlmfsi::CsrMatrix& DlmfsiOp::assemble(Stack stack, const dlmfsi::CouplingOptions& opt) const {
   FESpace* vf = **GetAny<pfes*>((*fluid_space)(stack));
   FESpace* vs = **GetAny<pfes*>((*solid_space)(stack));
   if (!vf || !vs) throw dlmfsi::Error("a space is not defined");
@@ -331,7 +338,7 @@ dlmfsi::CsrMatrix DlmfsiOp::assemble(Stack stack, const dlmfsi::CouplingOptions&
   const dlmfsi::FieldMap map(solid.mesh(), map_x_basis, &cx[0], px.second, map_y_basis, &cy[0], py.second, fit_x,
                              fit_y);
   dlmfsi::CouplingReport report;
-  dlmfsi::CsrMatrix b = dlmfsi::assemble_coupling(fluid, solid, map, opt, &report);
+  const dlmfsi::CsrMatrix& b = assembly().assemble(fluid, solid, map, opt, &report);
   if (verbosity > 1) cout << report.summary() << endl;
   if (opt.drop_outside && report.outside_area > 0 && verbosity > 0)
     cout << "dlmfsi: dropped area outside the fluid mesh " << report.outside_area << " (solid triangle "
@@ -343,10 +350,10 @@ AnyType DlmfsiOp::operator()(Stack stack) const {
   dlmfsi_ff::last_error().clear();
   std::string failure;
   dlmfsi::CouplingOptions opt;
-  dlmfsi::CsrMatrix b;
+  const dlmfsi::CsrMatrix* matrix = nullptr;
   try {
     opt = options(stack);
-    b = assemble(stack, opt);
+    matrix = &assemble(stack, opt);
   } catch (...) {
     failure = dlmfsi_ff::current_message();
   }
@@ -354,9 +361,11 @@ AnyType DlmfsiOp::operator()(Stack stack) const {
   if (given(kPart, part_list) && dlmfsi_ff::distributed())
     failure = dlmfsi_ff::agree(failure.empty() ? opt.part : -1, failure.empty() ? opt.parts : -1, failure);
   if (!failure.empty()) dlmfsi_ff::fail(failure);
-  // FreeFEM copies the compressed rows (set(..., tcsr=1)).
+  // FreeFEM copies the compressed rows (set(..., tcsr=1)); they stay the assembly's.
+  const dlmfsi::CsrMatrix& b = *matrix;
   MatriceMorse<double>* pa = new MatriceMorse<double>(b.rows, b.cols, 0, 0);
-  pa->set(b.rows, b.cols, 0, b.value.size(), b.start.data(), b.column.data(), b.value.data(), 0, 1);
+  pa->set(b.rows, b.cols, 0, b.value.size(), const_cast<int*>(b.start.data()), const_cast<int*>(b.column.data()),
+          const_cast<double*>(b.value.data()), 0, 1);
   return SetAny<newpMatrice_Creuse<double> >(newpMatrice_Creuse<double>(stack, pa));
 }
 

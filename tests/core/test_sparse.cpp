@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <map>
 #include <random>
 #include <utility>
@@ -34,4 +37,112 @@ TEST(Sparse, CompressSumsDuplicatesAndSortsRows) {
       ASSERT_EQ(it->first.second, m.column[e]);  // sorted, one entry per column
       ASSERT_NEAR(m.value[e], it->second, 1e-12 * (1 + std::abs(it->second)));
     }
+}
+
+namespace {
+
+std::vector<std::vector<Triplet>> random_parts(unsigned seed, int rows, int cols, int count) {
+  std::mt19937_64 rng(seed);
+  std::vector<std::vector<Triplet>> parts(2);
+  for (int e = 0; e < count; ++e)
+    parts[rng() % 2].push_back({static_cast<int>(rng() % rows), static_cast<int>(rng() % cols),
+                                static_cast<double>(rng() % 1000) / 7 + 1});
+  return parts;
+}
+
+// The same triplets with new values (the pattern kept).
+void revalue(std::vector<std::vector<Triplet>>& parts, double scale) {
+  for (auto& p : parts)
+    for (Triplet& t : p) t.value = t.value * scale + 0.25;
+}
+
+}  // namespace
+
+// A builder kept across builds gives compress's matrix bit for bit each time; on the same pattern it sums
+// the values in place, and a pattern that gains or loses an entry is rebuilt.
+TEST(Sparse, BuilderSumsInPlaceOnTheSamePatternOnly) {
+  const int rows = 30, cols = 50;
+  auto parts = random_parts(5, rows, cols, 400);
+  CsrBuilder builder;
+  auto expect_compress = [&](bool kept) {
+    const CsrMatrix want = compress(rows, cols, parts);
+    const CsrMatrix& got = builder.build(rows, cols, parts);
+    EXPECT_EQ(builder.kept_pattern(), kept);
+    EXPECT_EQ(got.start, want.start);
+    EXPECT_EQ(got.column, want.column);
+    EXPECT_EQ(got.value, want.value);
+  };
+  expect_compress(false);
+  revalue(parts, 3);
+  expect_compress(true);
+  // the triplets in another order, some repeated: the same pattern, sums in the new order
+  std::swap(parts[0][3], parts[1][7]);
+  parts[1].push_back(parts[0][0]);
+  expect_compress(true);
+  // a new entry: rebuilt
+  Triplet extra{0, 0, 1};
+  while (compress(rows, cols, parts).at(extra.row, extra.col) != 0) ++extra.col;
+  parts[0].push_back(extra);
+  expect_compress(false);
+  // an entry gone: rebuilt
+  parts[0].pop_back();
+  expect_compress(false);
+  // another shape: rebuilt
+  const auto other = random_parts(6, rows + 1, cols, 100);
+  const CsrMatrix want = compress(rows + 1, cols, other);
+  EXPECT_EQ(builder.build(rows + 1, cols, other).value, want.value);
+  EXPECT_FALSE(builder.kept_pattern());
+}
+
+// Threads each compress a range of rows: the matrix of any thread count is compress's bit for bit, on a
+// new pattern, summed in place on a kept one (built with another thread count), and rebuilt when the
+// pattern changes; more threads than rows, and an empty matrix, too.
+TEST(Sparse, ThreadedBuildIsTheSameBitForBit) {
+  const int rows = 200, cols = 3000;
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> mantissa(-1, 1);
+  std::vector<std::vector<Triplet>> parts(3);
+  for (int e = 0; e < 20000; ++e) {
+    const int i = static_cast<int>(rng() % rows);
+    const int c = static_cast<int>(rng() % (i % 10 == 0 ? cols : 40));  // some rows far above 32 columns
+    parts[rng() % 3].push_back({i, c, std::ldexp(mantissa(rng), static_cast<int>(rng() % 60) - 30)});
+  }
+  auto same = [](const CsrMatrix& got, const CsrMatrix& want) {
+    EXPECT_EQ(got.rows, want.rows);
+    EXPECT_EQ(got.cols, want.cols);
+    EXPECT_EQ(got.start, want.start);
+    EXPECT_EQ(got.column, want.column);
+    ASSERT_EQ(got.value.size(), want.value.size());
+    for (size_t k = 0; k < got.value.size(); ++k)
+      ASSERT_EQ(std::memcmp(&got.value[k], &want.value[k], sizeof(double)), 0) << "entry " << k;
+  };
+  for (int threads : {1, 2, 3, 7, 500}) {
+    SCOPED_TRACE(threads);
+    auto p = parts;
+    CsrBuilder builder;
+    same(builder.build(rows, cols, p, threads), compress(rows, cols, p));
+    EXPECT_FALSE(builder.kept_pattern());
+    // the same pattern, new values and another order: summed in place, with another thread count too
+    for (int again : {threads, 1 + threads % 3}) {
+      revalue(p, 0.7);
+      std::swap(p[0][5], p[2][9]);
+      same(builder.build(rows, cols, p, again), compress(rows, cols, p));
+      EXPECT_TRUE(builder.kept_pattern());
+    }
+    // one entry gone from one range: rebuilt
+    Triplet gone = p[1].back();
+    p[1].pop_back();
+    for (auto& q : p)
+      q.erase(std::remove_if(q.begin(), q.end(), [&](const Triplet& t) { return t.row == gone.row && t.col == gone.col; }),
+              q.end());
+    same(builder.build(rows, cols, p, threads), compress(rows, cols, p));
+    EXPECT_FALSE(builder.kept_pattern());
+    // a new entry: rebuilt
+    p[0].push_back({rows - 1, cols - 1, 0.125});
+    same(builder.build(rows, cols, p, threads), compress(rows, cols, p));
+    EXPECT_FALSE(builder.kept_pattern());
+  }
+  CsrBuilder empty;
+  same(empty.build(0, 5, {}, 3), compress(0, 5, {}));
+  same(empty.build(4, 5, {{}, {}}, 3), compress(4, 5, {{}, {}}));
 }

@@ -1,0 +1,45 @@
+#include "sides.hpp"
+
+#include <atomic>
+#include <utility>
+
+#include "errors.hpp"
+#include "validation.hpp"
+
+namespace dlmfsi {
+
+namespace {
+
+long next_serial() {
+  static std::atomic<long> serial{0};
+  return ++serial;
+}
+
+const Mesh& checked(const Mesh& mesh) {
+  if (mesh.size() == 0) throw Error("empty fluid mesh");
+  if (static_cast<int>(mesh.neighbours.size()) != mesh.size()) throw Error("fluid mesh adjacency not built");
+  return mesh;
+}
+
+}  // namespace
+
+FluidSide::FluidSide(Mesh mesh, const Basis& space, const std::vector<int>& components)
+    : serial_(next_serial()), scale_(scale_exponent(checked(mesh))), scaled_space_(space, scale_), space_(scaled_space_, morton_order(mesh)),
+      mesh_(renumbered(scaled(std::move(mesh), scale_), space_.original())),
+      components_(components),
+      degree_((check_components(space, components, "fluid", "fluid space"), polynomial_degree(space, components))), grid_(mesh_),
+      basis_(space_, mesh_, degree_, components), dofs_(static_cast<size_t>(mesh_.size()) * space.local_dofs()) {
+  check_mesh_planar(mesh_, grid_, "the fluid mesh", &space_.original());
+  for (int k = 0; k < mesh_.size(); ++k) space_.dofs(k, &dofs_[static_cast<size_t>(k) * space.local_dofs()]);
+}
+
+SolidSide::SolidSide(Mesh mesh, const Basis& multiplier, const std::vector<int>& components)
+    : serial_(next_serial()), mesh_(std::move(mesh)), space_(multiplier), components_(components),
+      degree_((check_components(multiplier, components, "solid", "multiplier space"),
+               polynomial_degree(multiplier, components))),
+      basis_(multiplier, mesh_, degree_, components), order_(morton_order(mesh_)),
+      dofs_(static_cast<size_t>(mesh_.size()) * multiplier.local_dofs()) {
+  for (int k = 0; k < mesh_.size(); ++k) space_.dofs(k, &dofs_[static_cast<size_t>(k) * multiplier.local_dofs()]);
+}
+
+}  // namespace dlmfsi

@@ -1,0 +1,70 @@
+// The assembly kept across calls (CouplingAssembly): a time loop's calls give what one-off calls give, bit
+// for bit, whatever changes between them (the map, the thread count, the fluid side), and the values are
+// written in place exactly when the pattern is the last call's.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "coupling.hpp"
+#include "support.hpp"
+
+using namespace dlmfsi;
+
+namespace {
+
+// The solid's P1 map: rotation by angle about (0.5, 0.5), then a shift.
+struct Rotated {
+  std::vector<double> x, y;
+  Rotated(const Mesh& solid, double angle, double shift) {
+    const double c = std::cos(angle), s = std::sin(angle);
+    for (Point p : solid.vertices) {
+      x.push_back(0.5 + c * (p.x - 0.5) - s * (p.y - 0.5) + shift);
+      y.push_back(0.5 + s * (p.x - 0.5) + c * (p.y - 0.5));
+    }
+  }
+};
+
+bool same_pattern(const CsrMatrix& a, const CsrMatrix& b) { return a.start == b.start && a.column == b.column; }
+
+}  // namespace
+
+TEST(CouplingAssembly, CallsInALoopGiveTheOneOffMatrices) {
+  const Mesh fluid_mesh = test::grid_mesh(16, 16, 0, 0, 1, 1, true);
+  const Mesh solid = test::grid_mesh(9, 7, 0.3, 0.3, 0.4, 0.35);
+  const test::P1 vf(fluid_mesh), vs(solid);
+  CouplingOptions opt;
+  opt.c1 = 0.3;
+  const FluidSide fluid(fluid_mesh, vf, opt.fluid_components);
+  const SolidSide solid_side(solid, vs, opt.solid_components);
+  CouplingAssembly assembly;
+  CsrMatrix last;
+  int kept = 0;
+  // the same map twice, small and large steps, thread counts up and down
+  const struct {
+    double angle, shift;
+    int threads;
+  } steps[] = {{0.1, 0, 1}, {0.1, 0, 2}, {0.1 + 1e-9, 0, 1}, {0.15, 0.02, 3}, {0.15, 0.02, 1}, {0.5, 0.05, 2}};
+  for (const auto& step : steps) {
+    const Rotated r(solid, step.angle, step.shift);
+    const FieldMap map(solid, vs, r.x.data(), 0, vs, r.y.data(), 0);
+    opt.threads = step.threads;
+    const CsrMatrix want = assemble_coupling(fluid, solid_side, map, opt);
+    const CsrMatrix& got = assembly.assemble(fluid, solid_side, map, opt);
+    EXPECT_TRUE(same_pattern(got, want));
+    EXPECT_EQ(got.value, want.value);
+    EXPECT_EQ(assembly.kept_pattern(), !last.start.empty() && same_pattern(want, last)) << step.angle;
+    kept += assembly.kept_pattern();
+    last = want;
+  }
+  EXPECT_GE(kept, 3);  // the same map on 2 threads, the tiny step, the same map on 1 thread
+  // a new fluid side (another mesh): the search follows it
+  const Mesh finer = test::grid_mesh(23, 21, 0, 0, 1, 1);
+  const test::P1 vfiner(finer);
+  const FluidSide other(finer, vfiner, opt.fluid_components);
+  const Rotated r(solid, 0.2, 0);
+  const FieldMap map(solid, vs, r.x.data(), 0, vs, r.y.data(), 0);
+  const CsrMatrix want = assemble_coupling(other, solid_side, map, opt);
+  EXPECT_EQ(assembly.assemble(other, solid_side, map, opt).value, want.value);
+  EXPECT_FALSE(assembly.kept_pattern());
+}
