@@ -20,6 +20,8 @@
 #include "coupling_args.hpp"
 #include "errors.hpp"
 #include "ranks.hpp"
+#include "side_cache.hpp"
+#include "space_basis.hpp"
 #include "validation.hpp"
 
 namespace {
@@ -27,20 +29,9 @@ namespace {
 using dlmfsi::Point;
 
 // A FreeFEM 2D finite element space as a dlmfsi::Basis.
-class SpaceBasis : public dlmfsi::Basis {
+class SpaceBasis : public dlmfsi_ff::SpaceBasisOf<2, FESpace> {
  public:
-  explicit SpaceBasis(const FESpace& vh) : vh_(vh), nd_(vh[0].NbDoF()), nc_(vh.N) {}
-  int components() const override { return nc_; }
-  int dof_count() const override { return vh_.NbOfDF; }
-  int local_dofs() const override { return nd_; }
-  void component_dofs(int c, int& first, int& last) const override {
-    first = vh_.TFE[0]->begin_dfcomp[c];
-    last = vh_.TFE[0]->end_dfcomp[c];
-  }
-  void dofs(int k, int* global) const override {
-    const FElement K = vh_[k];
-    for (int df = 0; df < nd_; ++df) global[df] = K(df);
-  }
+  using SpaceBasisOf::SpaceBasisOf;
   void evaluate(int k, Point xi, double* out) const override {
     static const bool what[last_operatortype] = {true, true, true, false, false, false, false, false, false, false};
     basis_functions(k, xi, what, out);
@@ -53,11 +44,7 @@ class SpaceBasis : public dlmfsi::Basis {
  private:
   // The operators asked for in what (op_id, op_dx, op_dy) into out; the others are left as they are.
   void basis_functions(int k, Point xi, const bool* what, double* out) const {
-    // FreeFEM's layout is (df, component, operator) with df fastest.
-    thread_local std::vector<double> buffer;
-    const size_t size = static_cast<size_t>(nd_) * nc_ * last_operatortype;
-    if (buffer.size() < size) buffer.resize(size);
-    KNMK_<double> fb(buffer.data(), nd_, nc_, last_operatortype);
+    KNMK_<double> fb = evaluation_buffer();
     const FElement K = vh_[k];
     K.BF(what, R2(xi.x, xi.y), fb);
     for (int df = 0; df < nd_; ++df)
@@ -68,32 +55,10 @@ class SpaceBasis : public dlmfsi::Basis {
         if (what[op_dy]) o[2] = fb(df, c, op_dy);
       }
   }
-  const FESpace& vh_;
-  int nd_, nc_;
 };
 
-// The fluid side (mesh, search grid, fitted basis) of the last call, reused while the fluid space and the
-// coupled components stay the same: a time loop on a fixed fluid mesh prepares it once. FreeFEM gives
-// every FESpace a unique id that is never reused, so a space rebuilt on a new mesh is never mistaken for
-// the cached one.
-struct FluidCache {
-  const FESpace* space = nullptr;
-  UniqueffId id;
-  std::vector<int> components;
-  std::unique_ptr<SpaceBasis> basis;
-  std::unique_ptr<dlmfsi::FluidSide> side;
-
-  const dlmfsi::FluidSide& get(const FESpace& vf, const std::vector<int>& comps) {
-    if (side && space == &vf && id == vf && components == comps) return *side;
-    side.reset();
-    basis.reset(new SpaceBasis(vf));
-    side.reset(new dlmfsi::FluidSide(dlmfsi_ff::convert(vf.Th), *basis, comps));
-    space = &vf;
-    id = vf;
-    components = comps;
-    return *side;
-  }
-};
+// The fluid side (mesh, search grid, fitted basis) of the last call.
+using FluidCache = dlmfsi_ff::SideCache<FESpace, SpaceBasis, dlmfsi::FluidSide>;
 
 FluidCache& fluid_cache() {
   static FluidCache* cache = new FluidCache;  // never destroyed: FreeFEM tears its spaces down first
@@ -103,7 +68,7 @@ FluidCache& fluid_cache() {
 // The solid side (solid mesh, multiplier fit) and the fits of the map's spaces of the last calls, reused
 // while the multiplier space and its coupled components stay the same: in a time loop only the map's
 // values change. The map's fits live on the solid side's mesh, so they go when it goes.
-struct SolidCache {
+struct SolidCache : dlmfsi_ff::SideCache<FESpace, SpaceBasis, dlmfsi::SolidSide> {
   struct MapFit {
     const FESpace* space;
     UniqueffId id;
@@ -111,23 +76,12 @@ struct SolidCache {
     std::unique_ptr<SpaceBasis> basis;
     std::unique_ptr<dlmfsi::PolynomialBasis> fit;
   };
-  const FESpace* space = nullptr;
-  UniqueffId id;
-  std::vector<int> components;
-  std::unique_ptr<SpaceBasis> basis;
-  std::unique_ptr<dlmfsi::SolidSide> side;
   std::vector<MapFit> fits;
 
   const dlmfsi::SolidSide& get(const FESpace& vs, const std::vector<int>& comps) {
-    if (side && space == &vs && id == vs && components == comps) return *side;
+    if (holds(vs, comps)) return *side;
     fits.clear();
-    side.reset();
-    basis.reset(new SpaceBasis(vs));
-    side.reset(new dlmfsi::SolidSide(dlmfsi_ff::convert(vs.Th), *basis, comps));
-    space = &vs;
-    id = vs;
-    components = comps;
-    return *side;
+    return make(vs, comps);
   }
 
   // Once per call, before map_fit: keeps the fits of the last call's map (the two most recently used), so

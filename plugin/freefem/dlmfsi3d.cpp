@@ -17,26 +17,17 @@
 #include "coupling3d.hpp"
 #include "coupling_args.hpp"
 #include "errors.hpp"
+#include "side_cache.hpp"
+#include "space_basis.hpp"
 
 namespace {
 
 using dlmfsi::Point3;
 
 // A FreeFEM 3D finite element space as a dlmfsi::Basis3.
-class SpaceBasis3 : public dlmfsi::Basis3 {
+class SpaceBasis3 : public dlmfsi_ff::SpaceBasisOf<3, FESpace3> {
  public:
-  explicit SpaceBasis3(const FESpace3& vh) : vh_(vh), nd_(vh[0].NbDoF()), nc_(vh.N) {}
-  int components() const override { return nc_; }
-  int dof_count() const override { return vh_.NbOfDF; }
-  int local_dofs() const override { return nd_; }
-  void component_dofs(int c, int& first, int& last) const override {
-    first = vh_.TFE[0]->begin_dfcomp[c];
-    last = vh_.TFE[0]->end_dfcomp[c];
-  }
-  void dofs(int k, int* global) const override {
-    const FElement3 K = vh_[k];
-    for (int df = 0; df < nd_; ++df) global[df] = K(df);
-  }
+  using SpaceBasisOf::SpaceBasisOf;
   void evaluate(int k, Point3 xi, double* out) const override {
     basis_functions(k, xi, Fop_D0 | Fop_D1, out);
   }
@@ -45,11 +36,7 @@ class SpaceBasis3 : public dlmfsi::Basis3 {
  private:
   // The operators asked for (op_id, op_dx, op_dy, op_dz) into out; the others are left as they are.
   void basis_functions(int k, Point3 xi, What_d what, double* out) const {
-    // FreeFEM's layout is (df, component, operator) with df fastest.
-    thread_local std::vector<double> buffer;
-    const size_t size = static_cast<size_t>(nd_) * nc_ * last_operatortype;
-    if (buffer.size() < size) buffer.resize(size);
-    KNMK_<double> fb(buffer.data(), nd_, nc_, last_operatortype);
+    KNMK_<double> fb = evaluation_buffer();
     const FElement3 K = vh_[k];
     K.BF(what, R3(xi.x, xi.y, xi.z), fb);
     const bool derivatives = (what & Fop_D1) != 0;
@@ -63,58 +50,14 @@ class SpaceBasis3 : public dlmfsi::Basis3 {
         o[3] = fb(df, c, op_dz);
       }
   }
-  const FESpace3& vh_;
-  int nd_, nc_;
 };
 
-// Vertices, tetrahedra and FreeFEM's own face adjacency (built here when FreeFEM has none); checked with
-// exact predicates.
-dlmfsi::Mesh3 convert(const Fem2D::Mesh3& th) {
-  dlmfsi::Mesh3 m;
-  m.vertices.resize(th.nv);
-  for (int v = 0; v < th.nv; ++v) m.vertices[v] = {th(v).x, th(v).y, th(v).z};
-  m.tetrahedra.resize(th.nt);
-  for (int k = 0; k < th.nt; ++k)
-    for (int i = 0; i < 4; ++i) m.tetrahedra[k][i] = th(k, i);
-  if (!th.TheAdjacencesLink) {
-    m.build_adjacency();
-    return m;
-  }
-  m.neighbours.resize(th.nt);
-  for (int k = 0; k < th.nt; ++k)
-    for (int i = 0; i < 4; ++i) {
-      int j = i;
-      const int kk = th.ElementAdj(k, j);
-      m.neighbours[k][i] = (kk < 0 || kk == k) ? -1 : kk;
-    }
-  m.check();
-  return m;
-}
-
-// The fluid side of the last call, reused while the fluid space and the coupled components stay the same
-// (FreeFEM never reuses a space's unique id, so a space rebuilt on a new mesh is never mistaken for it).
-struct FluidCache3 {
-  const FESpace3* space = nullptr;
-  UniqueffId id;
-  std::vector<int> components;
-  std::unique_ptr<SpaceBasis3> basis;
-  std::unique_ptr<dlmfsi::FluidSide3> side;
-
-  const dlmfsi::FluidSide3& get(const FESpace3& vf, const std::vector<int>& comps) {
-    if (side && space == &vf && id == vf && components == comps) return *side;
-    side.reset();
-    basis.reset(new SpaceBasis3(vf));
-    side.reset(new dlmfsi::FluidSide3(convert(vf.Th), *basis, comps));
-    space = &vf;
-    id = vf;
-    components = comps;
-    return *side;
-  }
-};
+// The fluid side of the last call.
+using FluidCache3 = dlmfsi_ff::SideCache<FESpace3, SpaceBasis3, dlmfsi::FluidSide3>;
 
 // The solid side (solid mesh, multiplier fit) and the fits of the map's spaces, reused while the
 // multiplier space and its coupled components stay the same (in a time loop only the map's values change).
-struct SolidCache3 {
+struct SolidCache3 : dlmfsi_ff::SideCache<FESpace3, SpaceBasis3, dlmfsi::SolidSide3> {
   struct MapFit {
     const FESpace3* space;
     UniqueffId id;
@@ -122,23 +65,12 @@ struct SolidCache3 {
     std::unique_ptr<SpaceBasis3> basis;
     std::unique_ptr<dlmfsi::PolynomialBasis3> fit;
   };
-  const FESpace3* space = nullptr;
-  UniqueffId id;
-  std::vector<int> components;
-  std::unique_ptr<SpaceBasis3> basis;
-  std::unique_ptr<dlmfsi::SolidSide3> side;
   std::vector<MapFit> fits;
 
   const dlmfsi::SolidSide3& get(const FESpace3& vs, const std::vector<int>& comps) {
-    if (side && space == &vs && id == vs && components == comps) return *side;
+    if (holds(vs, comps)) return *side;
     fits.clear();
-    side.reset();
-    basis.reset(new SpaceBasis3(vs));
-    side.reset(new dlmfsi::SolidSide3(convert(vs.Th), *basis, comps));
-    space = &vs;
-    id = vs;
-    components = comps;
-    return *side;
+    return make(vs, comps);
   }
 
   // The fit of component comp of the map's space vm at the given degree (kept across calls; the three
