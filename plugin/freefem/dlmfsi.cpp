@@ -65,46 +65,14 @@ FluidCache& fluid_cache() {
   return *cache;
 }
 
-// The solid side (solid mesh, multiplier fit) and the fits of the map's spaces of the last calls, reused
-// while the multiplier space and its coupled components stay the same: in a time loop only the map's
-// values change. The map's fits live on the solid side's mesh, so they go when it goes.
-struct SolidCache : dlmfsi_ff::SideCache<FESpace, SpaceBasis, dlmfsi::SolidSide> {
-  struct MapFit {
-    const FESpace* space;
-    UniqueffId id;
-    int comp, degree;
-    std::unique_ptr<SpaceBasis> basis;
-    std::unique_ptr<dlmfsi::PolynomialBasis> fit;
-  };
-  std::vector<MapFit> fits;
-
-  const dlmfsi::SolidSide& get(const FESpace& vs, const std::vector<int>& comps) {
-    if (holds(vs, comps)) return *side;
-    fits.clear();
-    return make(vs, comps);
-  }
-
-  // Once per call, before map_fit: keeps the fits of the last call's map (the two most recently used), so
-  // that the cache stays small and no fit handed out during a call is dropped before the call ends.
-  void trim_fits() {
-    if (fits.size() > 2) fits.erase(fits.begin(), fits.end() - 2);
-  }
-
-  // The fit of component comp of the map's space vm (on the solid side's mesh) at the given degree: the
-  // solid side's own fit when it is the same one. The most recently used fit is kept last (moving the
-  // entries leaves the fits themselves where they are).
+// The solid side (solid mesh, multiplier fit) and the fits of the map's spaces of the last calls (the two
+// most recently used).
+struct SolidCache : dlmfsi_ff::SolidCacheOf<FESpace, SpaceBasis, dlmfsi::SolidSide, dlmfsi::PolynomialBasis, 2> {
+  // The solid side's own fit when it is the one asked for.
   const dlmfsi::PolynomialBasis* map_fit(const FESpace& vm, int comp, int degree) {
     if (&vm == space && id == vm && side->components() == std::vector<int>{comp} && side->degree() == degree)
       return &side->basis();
-    for (auto it = fits.begin(); it != fits.end(); ++it)
-      if (it->space == &vm && it->id == vm && it->comp == comp && it->degree == degree) {
-        std::rotate(it, it + 1, fits.end());
-        return fits.back().fit.get();
-      }
-    MapFit f{&vm, vm, comp, degree, std::make_unique<SpaceBasis>(vm), nullptr};
-    f.fit = std::make_unique<dlmfsi::PolynomialBasis>(*f.basis, side->mesh(), degree, std::vector<int>{comp});
-    fits.push_back(std::move(f));
-    return fits.back().fit.get();
+    return SolidCacheOf::map_fit(vm, comp, degree);
   }
 };
 

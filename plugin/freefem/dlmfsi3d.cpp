@@ -55,42 +55,9 @@ class SpaceBasis3 : public dlmfsi_ff::SpaceBasisOf<3, FESpace3> {
 // The fluid side of the last call.
 using FluidCache3 = dlmfsi_ff::SideCache<FESpace3, SpaceBasis3, dlmfsi::FluidSide3>;
 
-// The solid side (solid mesh, multiplier fit) and the fits of the map's spaces, reused while the
-// multiplier space and its coupled components stay the same (in a time loop only the map's values change).
-struct SolidCache3 : dlmfsi_ff::SideCache<FESpace3, SpaceBasis3, dlmfsi::SolidSide3> {
-  struct MapFit {
-    const FESpace3* space;
-    UniqueffId id;
-    int comp, degree;
-    std::unique_ptr<SpaceBasis3> basis;
-    std::unique_ptr<dlmfsi::PolynomialBasis3> fit;
-  };
-  std::vector<MapFit> fits;
-
-  const dlmfsi::SolidSide3& get(const FESpace3& vs, const std::vector<int>& comps) {
-    if (holds(vs, comps)) return *side;
-    fits.clear();
-    return make(vs, comps);
-  }
-
-  // The fit of component comp of the map's space vm at the given degree (kept across calls; the three
-  // most recently used).
-  const dlmfsi::PolynomialBasis3* map_fit(const FESpace3& vm, int comp, int degree) {
-    for (auto it = fits.begin(); it != fits.end(); ++it)
-      if (it->space == &vm && it->id == vm && it->comp == comp && it->degree == degree) {
-        std::rotate(it, it + 1, fits.end());
-        return fits.back().fit.get();
-      }
-    MapFit f{&vm, vm, comp, degree, std::make_unique<SpaceBasis3>(vm), nullptr};
-    f.fit = std::make_unique<dlmfsi::PolynomialBasis3>(*f.basis, side->mesh(), degree, std::vector<int>{comp});
-    fits.push_back(std::move(f));
-    return fits.back().fit.get();
-  }
-  // Once per call, before map_fit: keeps the fits of the last call's map.
-  void trim_fits() {
-    if (fits.size() > 3) fits.erase(fits.begin(), fits.end() - 3);
-  }
-};
+// The solid side (solid mesh, multiplier fit) and the fits of the map's spaces of the last calls (the three
+// most recently used).
+using SolidCache3 = dlmfsi_ff::SolidCacheOf<FESpace3, SpaceBasis3, dlmfsi::SolidSide3, dlmfsi::PolynomialBasis3, 3>;
 
 FluidCache3& fluid_cache() {
   static FluidCache3* cache = new FluidCache3;  // never destroyed: FreeFEM tears its spaces down first
