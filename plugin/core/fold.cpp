@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "lattice.hpp"
+#include "matrix_inverse.hpp"
 
 namespace dlmfsi {
 
@@ -19,8 +20,8 @@ const std::vector<double>& bernstein_inverse(int n) {
   static const auto table = [] {
     std::vector<std::vector<double>> inv(kMaxDegree + 1);
     for (int deg = 0; deg <= kMaxDegree; ++deg) {
-      const int size = monomial_count(deg), w = 2 * size;
-      std::vector<double> a(static_cast<size_t>(size) * w, 0.0);  // [C | I], Gauss-Jordan with pivoting
+      const int size = monomial_count(deg);
+      std::vector<double> b(static_cast<size_t>(size) * size);  // C
       auto factorial = [](int k) {
         double f = 1;
         for (int i = 2; i <= k; ++i) f *= i;
@@ -32,27 +33,11 @@ const std::vector<double>& bernstein_inverse(int n) {
           int ea, eb;
           monomial_exponents(m, ea, eb);
           const int e0 = deg - ea - eb;
-          a[p * w + m] = factorial(deg) / (factorial(ea) * factorial(eb) * factorial(e0)) *
-                         std::pow(1 - x.x - x.y, e0) * std::pow(x.x, ea) * std::pow(x.y, eb);
-        }
-        a[p * w + size + p] = 1;
-      }
-      for (int c = 0; c < size; ++c) {
-        int piv = c;
-        for (int r = c + 1; r < size; ++r)
-          if (std::fabs(a[r * w + c]) > std::fabs(a[piv * w + c])) piv = r;
-        for (int j = 0; j < w; ++j) std::swap(a[c * w + j], a[piv * w + j]);
-        const double diag = a[c * w + c];
-        for (int j = 0; j < w; ++j) a[c * w + j] /= diag;
-        for (int r = 0; r < size; ++r) {
-          const double f = a[r * w + c];
-          if (r != c && f != 0)
-            for (int j = 0; j < w; ++j) a[r * w + j] -= f * a[c * w + j];
+          b[p * size + m] = factorial(deg) / (factorial(ea) * factorial(eb) * factorial(e0)) *
+                            std::pow(1 - x.x - x.y, e0) * std::pow(x.x, ea) * std::pow(x.y, eb);
         }
       }
-      inv[deg].resize(static_cast<size_t>(size) * size);
-      for (int r = 0; r < size; ++r)
-        for (int c = 0; c < size; ++c) inv[deg][r * size + c] = a[r * w + size + c];
+      inv[deg] = inverse(b, size);
     }
     return inv;
   }();

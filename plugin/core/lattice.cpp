@@ -3,6 +3,8 @@
 #include <cmath>
 #include <utility>
 
+#include "matrix_inverse.hpp"
+
 namespace dlmfsi {
 
 void monomial_exponents(int m, int& a, int& b) {
@@ -23,33 +25,17 @@ const std::vector<double>& vandermonde_inverse(int d) {
   static const auto table = [] {
     std::vector<std::vector<double>> inv(kMaxLatticeDegree + 1);
     for (int deg = 0; deg <= kMaxLatticeDegree; ++deg) {
-      const int n = monomial_count(deg), w = 2 * n;
-      std::vector<double> a(static_cast<size_t>(n) * w, 0.0);  // [V | I], Gauss-Jordan with pivoting
+      const int n = monomial_count(deg);
+      std::vector<double> v(static_cast<size_t>(n) * n);  // V[p][m] = monomial m at lattice point p
       for (int p = 0; p < n; ++p) {
         const Point x = lattice_point(deg, p);
         for (int m = 0; m < n; ++m) {
           int ea, eb;
           monomial_exponents(m, ea, eb);
-          a[p * w + m] = std::pow(x.x, ea) * std::pow(x.y, eb);
-        }
-        a[p * w + n + p] = 1;
-      }
-      for (int c = 0; c < n; ++c) {
-        int piv = c;
-        for (int r = c + 1; r < n; ++r)
-          if (std::fabs(a[r * w + c]) > std::fabs(a[piv * w + c])) piv = r;
-        for (int j = 0; j < w; ++j) std::swap(a[c * w + j], a[piv * w + j]);
-        const double diag = a[c * w + c];
-        for (int j = 0; j < w; ++j) a[c * w + j] /= diag;
-        for (int r = 0; r < n; ++r) {
-          const double f = a[r * w + c];
-          if (r != c && f != 0)
-            for (int j = 0; j < w; ++j) a[r * w + j] -= f * a[c * w + j];
+          v[p * n + m] = std::pow(x.x, ea) * std::pow(x.y, eb);
         }
       }
-      inv[deg].resize(static_cast<size_t>(n) * n);
-      for (int r = 0; r < n; ++r)
-        for (int c = 0; c < n; ++c) inv[deg][r * n + c] = a[r * w + n + c];
+      inv[deg] = inverse(v, n);
     }
     return inv;
   }();

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <utility>
 
+#include "matrix_inverse.hpp"
+
 namespace dlmfsi {
 
 void monomial_exponents3(int m, int& a, int& b, int& c) {
@@ -67,30 +69,10 @@ const std::vector<double>& vandermonde_inverse3(int d) {
   static const auto table = [] {
     std::vector<std::vector<double>> inv(kMaxLatticeDegree + 1);
     for (int deg = 0; deg <= kMaxLatticeDegree; ++deg) {
-      const int n = monomial_count3(deg), w = 2 * n;
-      std::vector<double> a(static_cast<size_t>(n) * w, 0.0);  // [V | I], Gauss-Jordan with pivoting
-      std::vector<double> row(n);
-      for (int p = 0; p < n; ++p) {
-        monomial_values3(deg, lattice_point3(deg, p), row.data());
-        for (int m = 0; m < n; ++m) a[static_cast<size_t>(p) * w + m] = row[m];
-        a[static_cast<size_t>(p) * w + n + p] = 1;
-      }
-      for (int c = 0; c < n; ++c) {
-        int piv = c;
-        for (int r = c + 1; r < n; ++r)
-          if (std::fabs(a[static_cast<size_t>(r) * w + c]) > std::fabs(a[static_cast<size_t>(piv) * w + c])) piv = r;
-        for (int j = 0; j < w; ++j) std::swap(a[static_cast<size_t>(c) * w + j], a[static_cast<size_t>(piv) * w + j]);
-        const double diag = a[static_cast<size_t>(c) * w + c];
-        for (int j = 0; j < w; ++j) a[static_cast<size_t>(c) * w + j] /= diag;
-        for (int r = 0; r < n; ++r) {
-          const double f = a[static_cast<size_t>(r) * w + c];
-          if (r != c && f != 0)
-            for (int j = 0; j < w; ++j) a[static_cast<size_t>(r) * w + j] -= f * a[static_cast<size_t>(c) * w + j];
-        }
-      }
-      inv[deg].resize(static_cast<size_t>(n) * n);
-      for (int r = 0; r < n; ++r)
-        for (int c = 0; c < n; ++c) inv[deg][static_cast<size_t>(r) * n + c] = a[static_cast<size_t>(r) * w + n + c];
+      const int n = monomial_count3(deg);
+      std::vector<double> v(static_cast<size_t>(n) * n);  // V[p][m] = monomial m at lattice point p
+      for (int p = 0; p < n; ++p) monomial_values3(deg, lattice_point3(deg, p), &v[static_cast<size_t>(p) * n]);
+      inv[deg] = inverse(v, n);
     }
     return inv;
   }();

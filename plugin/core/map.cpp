@@ -11,6 +11,7 @@
 #include "fold.hpp"
 #include "lattice.hpp"
 #include "polynomial_basis.hpp"
+#include "polynomial_fit.hpp"
 #include "predicates.hpp"
 
 namespace dlmfsi {
@@ -54,18 +55,8 @@ FieldMap::FieldMap(const Mesh& solid, const Basis& space_x, const double* coef_x
       monomial_coef_.clear();
       return;
     }
-    std::vector<int> dofs(p.space->local_dofs());
-    const int nc = p.space->components();
-    for (int k = 0; k < solid.size(); ++k) {
-      p.space->dofs(k, dofs.data());
-      const double* c = poly.coefficients(k);
-      double* out = &monomial_coef_[(static_cast<size_t>(k) * 2 + a) * nm];
-      for (int f : poly.functions()) {
-        const double value = p.coef[dofs[f / nc]];
-        for (int m = 0; m < nm; ++m) out[m] += value * c[m];
-        c += nm;
-      }
-    }
+    add_field_monomials(*p.space, p.coef, poly, nm, solid.size(), monomial_coef_, static_cast<size_t>(a) * nm,
+                        2 * static_cast<size_t>(nm));
   }
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "errors.hpp"
+#include "polynomial_fit.hpp"
 #include "predicates3d.hpp"
 
 namespace dlmfsi {
@@ -99,18 +100,10 @@ FieldMap3::FieldMap3(const Mesh3& solid, const Basis3* const space[3], const dou
         corner_dof_[a][i] = count == 1 && others_zero ? one : -1;
       }
     }
-    std::vector<int> dofs(p.space->local_dofs());
-    for (int k = 0; k < solid.size(); ++k) {
-      p.space->dofs(k, dofs.data());
-      const double* c = poly.coefficients(k);
-      double* out = &monomial_coef_[(static_cast<size_t>(k) * 3 + a) * nm];
-      for (int f : poly.functions()) {
-        const double value = p.coef[dofs[f / nc]];
-        for (int m = 0; m < nm; ++m) out[m] += value * c[m];
-        c += nm;
-      }
+    add_field_monomials(*p.space, p.coef, poly, nm, solid.size(), monomial_coef_, static_cast<size_t>(a) * nm,
+                        3 * static_cast<size_t>(nm));
+    for (int k = 0; k < solid.size(); ++k)
       if (!poly.shared(k)) corner_exact_[k] = 0;
-    }
   }
   for (int a = 0; a < 3; ++a)
     for (int i = 0; i < 4; ++i)

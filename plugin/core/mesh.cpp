@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "errors.hpp"
+#include "mesh_order.hpp"
 #include "predicates.hpp"
 
 namespace dlmfsi {
@@ -73,37 +74,11 @@ std::vector<int> morton_order(const Mesh& mesh) {
     const auto iy = static_cast<uint32_t>(std::min(65535.0, std::max(0.0, (y - lo.y) * sy)));
     keyed[k] = {spread(ix) | (spread(iy) << 1), k};
   }
-  std::sort(keyed.begin(), keyed.end());
-  std::vector<int> order(mesh.size());
-  for (int k = 0; k < mesh.size(); ++k) order[k] = keyed[k].second;
-  return order;
+  return order_by_key(std::move(keyed));
 }
 
 Mesh renumbered(const Mesh& mesh, const std::vector<int>& order) {
-  Mesh out;
-  const int nt = mesh.size();
-  std::vector<int> new_index(nt, -1), vertex_index(mesh.vertices.size(), -1);
-  for (int i = 0; i < nt; ++i) new_index[order[i]] = i;
-  out.triangles.resize(nt);
-  out.vertices.reserve(mesh.vertices.size());
-  for (int i = 0; i < nt; ++i)
-    for (int c = 0; c < 3; ++c) {
-      int& v = vertex_index[mesh.triangles[order[i]][c]];
-      if (v < 0) {
-        v = static_cast<int>(out.vertices.size());
-        out.vertices.push_back(mesh.vertices[mesh.triangles[order[i]][c]]);
-      }
-      out.triangles[i][c] = v;
-    }
-  if (!mesh.neighbours.empty()) {
-    out.neighbours.resize(nt);
-    for (int i = 0; i < nt; ++i)
-      for (int c = 0; c < 3; ++c) {
-        const int n = mesh.neighbours[order[i]][c];
-        out.neighbours[i][c] = n < 0 ? -1 : new_index[n];
-      }
-  }
-  return out;
+  return renumbered_elements(mesh, order, &Mesh::triangles);
 }
 
 }  // namespace dlmfsi

@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "errors.hpp"
+#include "mesh_order.hpp"
 #include "predicates3d.hpp"
 
 namespace dlmfsi {
@@ -82,37 +83,11 @@ std::vector<int> morton_order(const Mesh3& mesh) {
     const Point3 m = 0.25 * (c[0] + c[1] + c[2] + c[3]);
     keyed[k] = {spread(cell(m.x, lo.x, sx)) | (spread(cell(m.y, lo.y, sy)) << 1) | (spread(cell(m.z, lo.z, sz)) << 2), k};
   }
-  std::sort(keyed.begin(), keyed.end());
-  std::vector<int> order(mesh.size());
-  for (int k = 0; k < mesh.size(); ++k) order[k] = keyed[k].second;
-  return order;
+  return order_by_key(std::move(keyed));
 }
 
 Mesh3 renumbered(const Mesh3& mesh, const std::vector<int>& order) {
-  Mesh3 out;
-  const int nt = mesh.size();
-  std::vector<int> new_index(nt, -1), vertex_index(mesh.vertices.size(), -1);
-  for (int i = 0; i < nt; ++i) new_index[order[i]] = i;
-  out.tetrahedra.resize(nt);
-  out.vertices.reserve(mesh.vertices.size());
-  for (int i = 0; i < nt; ++i)
-    for (int c = 0; c < 4; ++c) {
-      int& v = vertex_index[mesh.tetrahedra[order[i]][c]];
-      if (v < 0) {
-        v = static_cast<int>(out.vertices.size());
-        out.vertices.push_back(mesh.vertices[mesh.tetrahedra[order[i]][c]]);
-      }
-      out.tetrahedra[i][c] = v;
-    }
-  if (!mesh.neighbours.empty()) {
-    out.neighbours.resize(nt);
-    for (int i = 0; i < nt; ++i)
-      for (int c = 0; c < 4; ++c) {
-        const int n = mesh.neighbours[order[i]][c];
-        out.neighbours[i][c] = n < 0 ? -1 : new_index[n];
-      }
-  }
-  return out;
+  return renumbered_elements(mesh, order, &Mesh3::tetrahedra);
 }
 
 }  // namespace dlmfsi

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "lattice.hpp"
+#include "polynomial_fit.hpp"
 
 namespace dlmfsi {
 
@@ -13,14 +14,12 @@ constexpr Point kCheckPoint{0.2113248654, 0.3141592654};
 }  // namespace
 
 PolynomialBasis::PolynomialBasis(const Basis& basis, const Mesh& mesh, int degree, const std::vector<int>& components)
-    : basis_(basis), mesh_(mesh), degree_(degree > kMaxLatticeDegree ? -1 : degree), nm_(0), nc_(basis.components()) {
-  for (int c : components) {
-    int first, last;
-    basis.component_dofs(c, first, last);
-    for (int d = first; d < last; ++d) functions_.push_back(d * nc_ + c);
-  }
-  std::sort(functions_.begin(), functions_.end());
-  functions_.erase(std::unique(functions_.begin(), functions_.end()), functions_.end());
+    : basis_(basis),
+      mesh_(mesh),
+      degree_(degree > kMaxLatticeDegree ? -1 : degree),
+      nm_(0),
+      nc_(basis.components()),
+      functions_(listed_functions(basis, components)) {
   sample_.resize(static_cast<size_t>(basis.local_dofs()) * nc_ * 3);
   check_.resize(sample_.size());
   inverse_jacobian_.resize(4 * static_cast<size_t>(mesh.size()));
@@ -45,27 +44,13 @@ PolynomialBasis::PolynomialBasis(const Basis& basis, const Mesh& mesh, int degre
   fit(0, reference_.data());
   slot_.assign(mesh.size(), -1);
   // Confirm the fit reproduces the basis (values and derivatives) off the lattice.
-  double worst = 0, scale = 1e-300;
-  for (Point t : {Point{0.137, 0.291}, Point{0.52, 0.083}}) {
-    basis_.evaluate(0, t, sample_.data());
-    evaluate(0, t, check_.data());
-    for (int f : functions_)
-      for (int d = 0; d < 3; ++d) {
-        worst = std::max(worst, std::fabs(sample_[f * 3 + d] - check_[f * 3 + d]));
-        scale = std::max(scale, std::fabs(sample_[f * 3 + d]));
-      }
-  }
-  if (worst > 1e-9 * scale) {
+  if (!fit_reproduces(basis_, {Point{0.137, 0.291}, Point{0.52, 0.083}},
+                      [&](Point xi, double* out) { evaluate(0, xi, out); }, functions_, sample_.data(), check_.data())) {
     degree_ = -1;
     return;
   }
-  // Components of a vector space built from one scalar element carry the same polynomials: each function
-  // whose shared fit equals an earlier one's (bit for bit) is evaluated once, as that one's twin.
-  twin_.assign(functions_.size(), -1);
-  for (size_t f = 1; f < functions_.size(); ++f)
-    for (size_t g = 0; g < f && twin_[f] < 0; ++g)
-      if (twin_[g] < 0 && std::equal(&reference_[f * nm_], &reference_[f * nm_] + nm_, &reference_[g * nm_]))
-        twin_[f] = static_cast<int>(g);
+  // Each function whose shared fit equals an earlier one's is evaluated once, as that one's twin.
+  twin_ = twin_functions(reference_, nm_);
   for (int k = 1; k < mesh.size(); ++k) check(k);
   derive(reference_, reference_derivative_);
   derive(own_, own_derivative_);
@@ -92,19 +77,8 @@ void PolynomialBasis::derive(const std::vector<double>& coefficients, std::vecto
 }
 
 void PolynomialBasis::fit(int k, double* c) {
-  const auto& inv = vandermonde_inverse(degree_);
-  const size_t width = functions_.size();
-  std::vector<double> values(static_cast<size_t>(nm_) * width);
-  for (int q = 0; q < nm_; ++q) {
-    basis_.values(k, lattice_point(degree_, q), sample_.data());
-    for (size_t f = 0; f < width; ++f) values[q * width + f] = sample_[functions_[f] * 3];
-  }
-  for (size_t f = 0; f < width; ++f)
-    for (int m = 0; m < nm_; ++m) {
-      double s = 0;
-      for (int q = 0; q < nm_; ++q) s += inv[m * nm_ + q] * values[q * width + f];
-      c[f * nm_ + m] = s;
-    }
+  fit_on_lattice(basis_, k, functions_, nm_, vandermonde_inverse(degree_),
+                 [this](int q) { return lattice_point(degree_, q); }, sample_.data(), c);
 }
 
 void PolynomialBasis::check(int k) {
@@ -112,19 +86,10 @@ void PolynomialBasis::check(int k) {
   double v[monomial_count(kMaxLatticeDegree)], d1[monomial_count(kMaxLatticeDegree)], d2[monomial_count(kMaxLatticeDegree)];
   monomials(degree_, kCheckPoint, v, d1, d2);
   basis_.values(k, kCheckPoint, sample_.data());
-  for (size_t f = 0; f < functions_.size(); ++f) {
-    double s = 0, scale = 0;
-    for (int m = 0; m < nm_; ++m) {
-      s += reference_[f * nm_ + m] * v[m];
-      scale += std::fabs(reference_[f * nm_ + m] * v[m]);
-    }
-    if (std::fabs(s - sample_[functions_[f] * 3]) > 1e-12 * (scale + 1)) {
-      slot_[k] = static_cast<int>(own_.size());
-      own_.resize(own_.size() + functions_.size() * nm_);
-      fit(k, &own_[slot_[k]]);
-      return;
-    }
-  }
+  if (fit_matches<2>(reference_.data(), nm_, v, functions_, sample_.data())) return;
+  slot_[k] = static_cast<int>(own_.size());
+  own_.resize(own_.size() + functions_.size() * nm_);
+  fit(k, &own_[slot_[k]]);
 }
 
 template <int NM>

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "polynomial_fit.hpp"
+
 namespace dlmfsi {
 
 namespace {
@@ -11,14 +13,11 @@ constexpr Point3 kCheckPoint{0.2113248654, 0.3141592654, 0.1732050808};
 }  // namespace
 
 PolynomialBasis3::PolynomialBasis3(const Basis3& basis, const Mesh3& mesh, int degree, const std::vector<int>& components)
-    : basis_(basis), mesh_(mesh), degree_(degree > kMaxLatticeDegree ? -1 : degree), nc_(basis.components()) {
-  for (int c : components) {
-    int first, last;
-    basis.component_dofs(c, first, last);
-    for (int d = first; d < last; ++d) functions_.push_back(d * nc_ + c);
-  }
-  std::sort(functions_.begin(), functions_.end());
-  functions_.erase(std::unique(functions_.begin(), functions_.end()), functions_.end());
+    : basis_(basis),
+      mesh_(mesh),
+      degree_(degree > kMaxLatticeDegree ? -1 : degree),
+      nc_(basis.components()),
+      functions_(listed_functions(basis, components)) {
   sample_.resize(static_cast<size_t>(basis.local_dofs()) * nc_ * 4);
   check_.resize(sample_.size());
   inverse_jacobian_.resize(9 * static_cast<size_t>(mesh.size()));
@@ -45,42 +44,19 @@ PolynomialBasis3::PolynomialBasis3(const Basis3& basis, const Mesh3& mesh, int d
   fit(0, reference_.data());
   slot_.assign(mesh.size(), -1);
   // Confirm the fit reproduces the basis (values and derivatives) off the lattice.
-  double worst = 0, scale = 1e-300;
-  for (Point3 t : {Point3{0.137, 0.291, 0.218}, Point3{0.52, 0.083, 0.171}}) {
-    basis_.evaluate(0, t, sample_.data());
-    evaluate(0, t, check_.data());
-    for (int f : functions_)
-      for (int d = 0; d < 4; ++d) {
-        worst = std::max(worst, std::fabs(sample_[f * 4 + d] - check_[f * 4 + d]));
-        scale = std::max(scale, std::fabs(sample_[f * 4 + d]));
-      }
-  }
-  if (worst > 1e-9 * scale) {
+  if (!fit_reproduces(basis_, {Point3{0.137, 0.291, 0.218}, Point3{0.52, 0.083, 0.171}},
+                      [&](Point3 xi, double* out) { evaluate(0, xi, out); }, functions_, sample_.data(),
+                      check_.data())) {
     degree_ = -1;
     return;
   }
-  twin_.assign(functions_.size(), -1);
-  for (size_t f = 1; f < functions_.size(); ++f)
-    for (size_t g = 0; g < f && twin_[f] < 0; ++g)
-      if (twin_[g] < 0 && std::equal(&reference_[f * nm_], &reference_[f * nm_] + nm_, &reference_[g * nm_]))
-        twin_[f] = static_cast<int>(g);
+  twin_ = twin_functions(reference_, nm_);
   for (int k = 1; k < mesh.size(); ++k) check(k);
 }
 
 void PolynomialBasis3::fit(int k, double* c) {
-  const auto& inv = vandermonde_inverse3(degree_);
-  const size_t width = functions_.size();
-  std::vector<double> values(static_cast<size_t>(nm_) * width);
-  for (int q = 0; q < nm_; ++q) {
-    basis_.values(k, lattice_point3(degree_, q), sample_.data());
-    for (size_t f = 0; f < width; ++f) values[q * width + f] = sample_[functions_[f] * 4];
-  }
-  for (size_t f = 0; f < width; ++f)
-    for (int m = 0; m < nm_; ++m) {
-      double s = 0;
-      for (int q = 0; q < nm_; ++q) s += inv[static_cast<size_t>(m) * nm_ + q] * values[q * width + f];
-      c[f * nm_ + m] = s;
-    }
+  fit_on_lattice(basis_, k, functions_, nm_, vandermonde_inverse3(degree_),
+                 [this](int q) { return lattice_point3(degree_, q); }, sample_.data(), c);
 }
 
 void PolynomialBasis3::check(int k) {
@@ -88,19 +64,10 @@ void PolynomialBasis3::check(int k) {
   double v[monomial_count3(kMaxLatticeDegree)];
   monomial_values3(degree_, kCheckPoint, v);
   basis_.values(k, kCheckPoint, sample_.data());
-  for (size_t f = 0; f < functions_.size(); ++f) {
-    double s = 0, scale = 0;
-    for (int m = 0; m < nm_; ++m) {
-      s += reference_[f * nm_ + m] * v[m];
-      scale += std::fabs(reference_[f * nm_ + m] * v[m]);
-    }
-    if (std::fabs(s - sample_[functions_[f] * 4]) > 1e-12 * (scale + 1)) {
-      slot_[k] = static_cast<int>(own_.size());
-      own_.resize(own_.size() + functions_.size() * nm_);
-      fit(k, &own_[slot_[k]]);
-      return;
-    }
-  }
+  if (fit_matches<3>(reference_.data(), nm_, v, functions_, sample_.data())) return;
+  slot_[k] = static_cast<int>(own_.size());
+  own_.resize(own_.size() + functions_.size() * nm_);
+  fit(k, &own_[slot_[k]]);
 }
 
 void PolynomialBasis3::evaluate_points(int k, const Point3* xi, int n, double* value, double* gradient) const {

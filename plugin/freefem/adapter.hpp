@@ -7,8 +7,18 @@
 #include <string>
 
 #include "mesh.hpp"
+#include "mesh3d.hpp"
 
 namespace dlmfsi_ff {
+
+// FreeFEM's adjacency: the element across the facet opposite vertex i of element k, or -1 on the boundary
+// (where FreeFEM gives a negative number or k itself).
+template <class FfMesh>
+int neighbour(const FfMesh& th, int k, int i) {
+  int j = i;
+  const int kk = th.ElementAdj(k, j);
+  return (kk < 0 || kk == k) ? -1 : kk;
+}
 
 // Vertices, triangles and FreeFEM's own adjacency (no sort needed); checked with exact predicates.
 inline dlmfsi::Mesh convert(const Fem2D::Mesh& th) {
@@ -20,10 +30,28 @@ inline dlmfsi::Mesh convert(const Fem2D::Mesh& th) {
   for (int k = 0; k < th.nt; ++k)
     for (int i = 0; i < 3; ++i) {
       m.triangles[k][i] = th(k, i);
-      int j = i;
-      const int kk = th.ElementAdj(k, j);
-      m.neighbours[k][i] = (kk < 0 || kk == k) ? -1 : kk;
+      m.neighbours[k][i] = neighbour(th, k, i);
     }
+  m.check();
+  return m;
+}
+
+// Vertices, tetrahedra and FreeFEM's own face adjacency (built here when FreeFEM has none); checked with
+// exact predicates.
+inline dlmfsi::Mesh3 convert(const Fem2D::Mesh3& th) {
+  dlmfsi::Mesh3 m;
+  m.vertices.resize(th.nv);
+  for (int v = 0; v < th.nv; ++v) m.vertices[v] = {th(v).x, th(v).y, th(v).z};
+  m.tetrahedra.resize(th.nt);
+  for (int k = 0; k < th.nt; ++k)
+    for (int i = 0; i < 4; ++i) m.tetrahedra[k][i] = th(k, i);
+  if (!th.TheAdjacencesLink) {
+    m.build_adjacency();
+    return m;
+  }
+  m.neighbours.resize(th.nt);
+  for (int k = 0; k < th.nt; ++k)
+    for (int i = 0; i < 4; ++i) m.neighbours[k][i] = neighbour(th, k, i);
   m.check();
   return m;
 }

@@ -17,8 +17,11 @@
 
 #include "adapter.hpp"
 #include "coupling.hpp"
+#include "coupling_args.hpp"
 #include "errors.hpp"
 #include "ranks.hpp"
+#include "side_cache.hpp"
+#include "space_basis.hpp"
 #include "validation.hpp"
 
 namespace {
@@ -26,20 +29,9 @@ namespace {
 using dlmfsi::Point;
 
 // A FreeFEM 2D finite element space as a dlmfsi::Basis.
-class SpaceBasis : public dlmfsi::Basis {
+class SpaceBasis : public dlmfsi_ff::SpaceBasisOf<2, FESpace> {
  public:
-  explicit SpaceBasis(const FESpace& vh) : vh_(vh), nd_(vh[0].NbDoF()), nc_(vh.N) {}
-  int components() const override { return nc_; }
-  int dof_count() const override { return vh_.NbOfDF; }
-  int local_dofs() const override { return nd_; }
-  void component_dofs(int c, int& first, int& last) const override {
-    first = vh_.TFE[0]->begin_dfcomp[c];
-    last = vh_.TFE[0]->end_dfcomp[c];
-  }
-  void dofs(int k, int* global) const override {
-    const FElement K = vh_[k];
-    for (int df = 0; df < nd_; ++df) global[df] = K(df);
-  }
+  using SpaceBasisOf::SpaceBasisOf;
   void evaluate(int k, Point xi, double* out) const override {
     static const bool what[last_operatortype] = {true, true, true, false, false, false, false, false, false, false};
     basis_functions(k, xi, what, out);
@@ -52,11 +44,7 @@ class SpaceBasis : public dlmfsi::Basis {
  private:
   // The operators asked for in what (op_id, op_dx, op_dy) into out; the others are left as they are.
   void basis_functions(int k, Point xi, const bool* what, double* out) const {
-    // FreeFEM's layout is (df, component, operator) with df fastest.
-    thread_local std::vector<double> buffer;
-    const size_t size = static_cast<size_t>(nd_) * nc_ * last_operatortype;
-    if (buffer.size() < size) buffer.resize(size);
-    KNMK_<double> fb(buffer.data(), nd_, nc_, last_operatortype);
+    KNMK_<double> fb = evaluation_buffer();
     const FElement K = vh_[k];
     K.BF(what, R2(xi.x, xi.y), fb);
     for (int df = 0; df < nd_; ++df)
@@ -67,89 +55,24 @@ class SpaceBasis : public dlmfsi::Basis {
         if (what[op_dy]) o[2] = fb(df, c, op_dy);
       }
   }
-  const FESpace& vh_;
-  int nd_, nc_;
 };
 
-// The fluid side (mesh, search grid, fitted basis) of the last call, reused while the fluid space and the
-// coupled components stay the same: a time loop on a fixed fluid mesh prepares it once. FreeFEM gives
-// every FESpace a unique id that is never reused, so a space rebuilt on a new mesh is never mistaken for
-// the cached one.
-struct FluidCache {
-  const FESpace* space = nullptr;
-  UniqueffId id;
-  std::vector<int> components;
-  std::unique_ptr<SpaceBasis> basis;
-  std::unique_ptr<dlmfsi::FluidSide> side;
-
-  const dlmfsi::FluidSide& get(const FESpace& vf, const std::vector<int>& comps) {
-    if (side && space == &vf && id == vf && components == comps) return *side;
-    side.reset();
-    basis.reset(new SpaceBasis(vf));
-    side.reset(new dlmfsi::FluidSide(dlmfsi_ff::convert(vf.Th), *basis, comps));
-    space = &vf;
-    id = vf;
-    components = comps;
-    return *side;
-  }
-};
+// The fluid side (mesh, search grid, fitted basis) of the last call.
+using FluidCache = dlmfsi_ff::SideCache<FESpace, SpaceBasis, dlmfsi::FluidSide>;
 
 FluidCache& fluid_cache() {
   static FluidCache* cache = new FluidCache;  // never destroyed: FreeFEM tears its spaces down first
   return *cache;
 }
 
-// The solid side (solid mesh, multiplier fit) and the fits of the map's spaces of the last calls, reused
-// while the multiplier space and its coupled components stay the same: in a time loop only the map's
-// values change. The map's fits live on the solid side's mesh, so they go when it goes.
-struct SolidCache {
-  struct MapFit {
-    const FESpace* space;
-    UniqueffId id;
-    int comp, degree;
-    std::unique_ptr<SpaceBasis> basis;
-    std::unique_ptr<dlmfsi::PolynomialBasis> fit;
-  };
-  const FESpace* space = nullptr;
-  UniqueffId id;
-  std::vector<int> components;
-  std::unique_ptr<SpaceBasis> basis;
-  std::unique_ptr<dlmfsi::SolidSide> side;
-  std::vector<MapFit> fits;
-
-  const dlmfsi::SolidSide& get(const FESpace& vs, const std::vector<int>& comps) {
-    if (side && space == &vs && id == vs && components == comps) return *side;
-    fits.clear();
-    side.reset();
-    basis.reset(new SpaceBasis(vs));
-    side.reset(new dlmfsi::SolidSide(dlmfsi_ff::convert(vs.Th), *basis, comps));
-    space = &vs;
-    id = vs;
-    components = comps;
-    return *side;
-  }
-
-  // Once per call, before map_fit: keeps the fits of the last call's map (the two most recently used), so
-  // that the cache stays small and no fit handed out during a call is dropped before the call ends.
-  void trim_fits() {
-    if (fits.size() > 2) fits.erase(fits.begin(), fits.end() - 2);
-  }
-
-  // The fit of component comp of the map's space vm (on the solid side's mesh) at the given degree: the
-  // solid side's own fit when it is the same one. The most recently used fit is kept last (moving the
-  // entries leaves the fits themselves where they are).
+// The solid side (solid mesh, multiplier fit) and the fits of the map's spaces of the last calls (the two
+// most recently used).
+struct SolidCache : dlmfsi_ff::SolidCacheOf<FESpace, SpaceBasis, dlmfsi::SolidSide, dlmfsi::PolynomialBasis, 2> {
+  // The solid side's own fit when it is the one asked for.
   const dlmfsi::PolynomialBasis* map_fit(const FESpace& vm, int comp, int degree) {
     if (&vm == space && id == vm && side->components() == std::vector<int>{comp} && side->degree() == degree)
       return &side->basis();
-    for (auto it = fits.begin(); it != fits.end(); ++it)
-      if (it->space == &vm && it->id == vm && it->comp == comp && it->degree == degree) {
-        std::rotate(it, it + 1, fits.end());
-        return fits.back().fit.get();
-      }
-    MapFit f{&vm, vm, comp, degree, std::make_unique<SpaceBasis>(vm), nullptr};
-    f.fit = std::make_unique<dlmfsi::PolynomialBasis>(*f.basis, side->mesh(), degree, std::vector<int>{comp});
-    fits.push_back(std::move(f));
-    return fits.back().fit.get();
+    return SolidCacheOf::map_fit(vm, comp, degree);
   }
 };
 
@@ -168,28 +91,12 @@ dlmfsi::CouplingAssembly& assembly() {
 class DlmfsiOp : public E_F0mps {
  public:
   typedef newpMatrice_Creuse<double> Result;
-  static const int n_name_param = 13;
-  static basicAC_F0::name_and_type name_param[n_name_param];
-  enum { kC1, kC2, kFluid, kSolid, kMethod, kGradient, kQforder, kTol, kSubdivide, kOutside, kOutsideTol, kThreads, kPart };
+  using Args = dlmfsi_ff::CouplingArgs;
 
   Expression fluid_space, solid_space, map_x, map_y;
-  Expression nargs[n_name_param];
-  // fluid=[..] / solid=[..] / part=[..] given as literal arrays: one expression per entry.
-  std::vector<Expression> fluid_list, solid_list, part_list;
+  const Args named;
 
-  explicit DlmfsiOp(const basicAC_F0& args) {
-    // A literal [0,1] arrives as E_Array, an int[int] variable as KN_<long>: declare what was given.
-    basicAC_F0::name_and_type np[n_name_param];
-    for (int i = 0; i < n_name_param; ++i) np[i] = name_param[i];
-    for (int i : {int(kFluid), int(kSolid), int(kPart)})
-      if (args.find(np[i].name).left() == atype<E_Array>()) np[i].type = &typeid(E_Array);
-    args.SetNameParam(n_name_param, np, nargs);
-    for (int i : {int(kFluid), int(kSolid), int(kPart)})
-      if (const E_Array* a = dynamic_cast<const E_Array*>(nargs[i])) {
-        auto& list = i == kFluid ? fluid_list : (i == kSolid ? solid_list : part_list);
-        for (int e = 0; e < a->size(); ++e) list.push_back(to<long>((*a)[e]));
-        nargs[i] = 0;
-      }
+  explicit DlmfsiOp(const basicAC_F0& args) : named(args) {
     fluid_space = to<pfes*>(args[0]);
     solid_space = to<pfes*>(args[1]);
     const E_Array* xy = dynamic_cast<const E_Array*>(args[2].LeftValue());
@@ -203,35 +110,10 @@ class DlmfsiOp : public E_F0mps {
   AnyType operator()(Stack stack) const;
 
  private:
-  template <class T>
-  T arg(int i, Stack stack, T otherwise) const {
-    return nargs[i] ? GetAny<T>((*nargs[i])(stack)) : otherwise;
-  }
-  std::string text(int i, Stack stack, const char* otherwise) const {
-    return nargs[i] ? *GetAny<string*>((*nargs[i])(stack)) : std::string(otherwise);
-  }
-  // The entries of an integer list option as given (64-bit), and whether the option was given at all.
-  std::vector<long> integers(int i, const std::vector<Expression>& list, Stack stack) const {
-    std::vector<long> out;
-    for (Expression e : list) out.push_back(GetAny<long>((*e)(stack)));
-    if (nargs[i]) {
-      KN_<long> v = GetAny<KN_<long> >((*nargs[i])(stack));
-      for (int k = 0; k < v.N(); ++k) out.push_back(v[k]);
-    }
-    return out;
-  }
-  bool given(int i, const std::vector<Expression>& list) const { return nargs[i] || !list.empty(); }
-  std::vector<int> components(int i, const std::vector<Expression>& list, const char* side, Stack stack) const;
+  std::vector<int> components(int i, const char* side, Stack stack) const;
   dlmfsi::CouplingOptions options(Stack stack) const;
   const dlmfsi::CsrMatrix& assemble(Stack stack, const dlmfsi::CouplingOptions& opt) const;
 };
-
-basicAC_F0::name_and_type DlmfsiOp::name_param[n_name_param] = {
-    {"c1", &typeid(double)},        {"c2", &typeid(double)},        {"fluid", &typeid(KN_<long>)},
-    {"solid", &typeid(KN_<long>)},  {"method", &typeid(string*)},   {"gradient", &typeid(string*)},
-    {"qforder", &typeid(long)},     {"tol", &typeid(double)},       {"subdivide", &typeid(long)},
-    {"outside", &typeid(string*)},  {"outsidetol", &typeid(double)}, {"threads", &typeid(long)},
-    {"part", &typeid(KN_<long>)}};
 
 namespace {
 
@@ -246,9 +128,9 @@ int checked_int(long v, long lo, long hi, const std::string& what) {
 
 }  // namespace
 
-std::vector<int> DlmfsiOp::components(int i, const std::vector<Expression>& list, const char* side, Stack stack) const {
-  if (!given(i, list)) return {0};
-  const std::vector<long> v = integers(i, list, stack);
+std::vector<int> DlmfsiOp::components(int i, const char* side, Stack stack) const {
+  if (!named.given(i)) return {0};
+  const std::vector<long> v = named.integers(i, stack);
   if (v.empty()) throw dlmfsi::Error(std::string(side) + "= is empty: list the components to couple");
   std::vector<int> out;
   for (long c : v) {
@@ -261,12 +143,12 @@ std::vector<int> DlmfsiOp::components(int i, const std::vector<Expression>& list
 dlmfsi::CouplingOptions DlmfsiOp::options(Stack stack) const {
   using Options = dlmfsi::CouplingOptions;
   Options o;
-  o.c1 = arg(kC1, stack, 1.0);
-  o.c2 = arg(kC2, stack, 1.0);
-  o.fluid_components = components(kFluid, fluid_list, "fluid", stack);
-  o.solid_components = components(kSolid, solid_list, "solid", stack);
-  if (given(kPart, part_list)) {
-    const std::vector<long> part = integers(kPart, part_list, stack);
+  o.c1 = named.arg(Args::kC1, stack, 1.0);
+  o.c2 = named.arg(Args::kC2, stack, 1.0);
+  o.fluid_components = components(Args::kFluid, "fluid", stack);
+  o.solid_components = components(Args::kSolid, "solid", stack);
+  if (named.given(Args::kPart)) {
+    const std::vector<long> part = named.integers(Args::kPart, stack);
     if (part.size() != 2 || part[1] < 1 || part[1] > INT_MAX || part[0] < 0 || part[0] >= part[1]) {
       std::string given_part;
       for (size_t k = 0; k < part.size(); ++k) given_part += (k ? ", " : "") + std::to_string(part[k]);
@@ -276,39 +158,29 @@ dlmfsi::CouplingOptions DlmfsiOp::options(Stack stack) const {
     o.part = static_cast<int>(part[0]);
     o.parts = static_cast<int>(part[1]);
   }
-  const std::string method = text(kMethod, stack, "exact");
+  const std::string method = named.text(Args::kMethod, stack, "exact");
   if (method == "exact")
     o.method = Options::Method::Exact;
   else if (method == "quadrature")
     o.method = Options::Method::Quadrature;
   else
     throw dlmfsi::Error("method=\"" + method + "\": expected \"exact\" or \"quadrature\"");
-  const std::string gradient = text(kGradient, stack, "chain");
-  if (gradient == "chain")
-    o.gradient = Options::Gradient::Chain;
-  else if (gradient == "listing")
-    o.gradient = Options::Gradient::Listing;
-  else
-    throw dlmfsi::Error("gradient=\"" + gradient + "\": expected \"chain\" or \"listing\"");
+  o.gradient = named.gradient(stack);
   // Given values are checked before they become ints (-1: the automatic choice, as when not given).
-  if (nargs[kQforder]) {
-    const long q = arg(kQforder, stack, 0L);
+  if (named.given(Args::kQforder)) {
+    const long q = named.arg(Args::kQforder, stack, 0L);
     dlmfsi::check_qforder(q);
     o.qforder = static_cast<int>(q);
   }
-  o.tol = arg(kTol, stack, o.tol);
-  if (nargs[kSubdivide]) {
-    const long l = arg(kSubdivide, stack, 0L);
+  o.tol = named.arg(Args::kTol, stack, o.tol);
+  if (named.given(Args::kSubdivide)) {
+    const long l = named.arg(Args::kSubdivide, stack, 0L);
     dlmfsi::check_subdivide(l);
     o.subdivide = static_cast<int>(l);
   }
-  const std::string outside = text(kOutside, stack, "error");
-  if (outside == "drop")
-    o.drop_outside = true;
-  else if (outside != "error")
-    throw dlmfsi::Error("outside=\"" + outside + "\": expected \"error\" or \"drop\"");
-  o.outside_tol = arg(kOutsideTol, stack, o.outside_tol);
-  o.threads = checked_int(arg(kThreads, stack, 1L), 1, INT_MAX, "threads");
+  o.drop_outside = named.drop_outside(stack);
+  o.outside_tol = named.arg(Args::kOutsideTol, stack, o.outside_tol);
+  o.threads = checked_int(named.arg(Args::kThreads, stack, 1L), 1, INT_MAX, "threads");
   return o;
 }
 
@@ -358,7 +230,7 @@ AnyType DlmfsiOp::operator()(Stack stack) const {
     failure = dlmfsi_ff::current_message();
   }
   // A share of a distributed assembly: every process raises the same error, or none does.
-  if (given(kPart, part_list) && dlmfsi_ff::distributed())
+  if (named.given(Args::kPart) && dlmfsi_ff::distributed())
     failure = dlmfsi_ff::agree(failure.empty() ? opt.part : -1, failure.empty() ? opt.parts : -1, failure);
   if (!failure.empty()) dlmfsi_ff::fail(failure);
   // FreeFEM copies the compressed rows (set(..., tcsr=1)); they stay the assembly's.
@@ -375,14 +247,8 @@ template <class SpaceF, class SpaceS>
 class NotTwoD : public E_F0mps {
  public:
   typedef newpMatrice_Creuse<double> Result;
-  Expression nargs[DlmfsiOp::n_name_param];
-  explicit NotTwoD(const basicAC_F0& args) {
-    basicAC_F0::name_and_type np[DlmfsiOp::n_name_param];
-    for (int i = 0; i < DlmfsiOp::n_name_param; ++i) np[i] = DlmfsiOp::name_param[i];
-    for (int i = 0; i < DlmfsiOp::n_name_param; ++i)
-      if (args.find(np[i].name).left() == atype<E_Array>()) np[i].type = &typeid(E_Array);
-    args.SetNameParam(DlmfsiOp::n_name_param, np, nargs);
-  }
+  const dlmfsi_ff::CouplingArgs named;
+  explicit NotTwoD(const basicAC_F0& args) : named(args, false) {}
   static ArrayOfaType typeargs() { return ArrayOfaType(atype<SpaceF>(), atype<SpaceS>(), atype<E_Array>()); }
   static E_F0* f(const basicAC_F0& args) { return new NotTwoD(args); }
   AnyType operator()(Stack) const {

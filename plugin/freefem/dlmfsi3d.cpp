@@ -15,27 +15,19 @@
 
 #include "adapter.hpp"
 #include "coupling3d.hpp"
+#include "coupling_args.hpp"
 #include "errors.hpp"
+#include "side_cache.hpp"
+#include "space_basis.hpp"
 
 namespace {
 
 using dlmfsi::Point3;
 
 // A FreeFEM 3D finite element space as a dlmfsi::Basis3.
-class SpaceBasis3 : public dlmfsi::Basis3 {
+class SpaceBasis3 : public dlmfsi_ff::SpaceBasisOf<3, FESpace3> {
  public:
-  explicit SpaceBasis3(const FESpace3& vh) : vh_(vh), nd_(vh[0].NbDoF()), nc_(vh.N) {}
-  int components() const override { return nc_; }
-  int dof_count() const override { return vh_.NbOfDF; }
-  int local_dofs() const override { return nd_; }
-  void component_dofs(int c, int& first, int& last) const override {
-    first = vh_.TFE[0]->begin_dfcomp[c];
-    last = vh_.TFE[0]->end_dfcomp[c];
-  }
-  void dofs(int k, int* global) const override {
-    const FElement3 K = vh_[k];
-    for (int df = 0; df < nd_; ++df) global[df] = K(df);
-  }
+  using SpaceBasisOf::SpaceBasisOf;
   void evaluate(int k, Point3 xi, double* out) const override {
     basis_functions(k, xi, Fop_D0 | Fop_D1, out);
   }
@@ -44,11 +36,7 @@ class SpaceBasis3 : public dlmfsi::Basis3 {
  private:
   // The operators asked for (op_id, op_dx, op_dy, op_dz) into out; the others are left as they are.
   void basis_functions(int k, Point3 xi, What_d what, double* out) const {
-    // FreeFEM's layout is (df, component, operator) with df fastest.
-    thread_local std::vector<double> buffer;
-    const size_t size = static_cast<size_t>(nd_) * nc_ * last_operatortype;
-    if (buffer.size() < size) buffer.resize(size);
-    KNMK_<double> fb(buffer.data(), nd_, nc_, last_operatortype);
+    KNMK_<double> fb = evaluation_buffer();
     const FElement3 K = vh_[k];
     K.BF(what, R3(xi.x, xi.y, xi.z), fb);
     const bool derivatives = (what & Fop_D1) != 0;
@@ -62,102 +50,14 @@ class SpaceBasis3 : public dlmfsi::Basis3 {
         o[3] = fb(df, c, op_dz);
       }
   }
-  const FESpace3& vh_;
-  int nd_, nc_;
 };
 
-// Vertices, tetrahedra and FreeFEM's own face adjacency (built here when FreeFEM has none); checked with
-// exact predicates.
-dlmfsi::Mesh3 convert(const Fem2D::Mesh3& th) {
-  dlmfsi::Mesh3 m;
-  m.vertices.resize(th.nv);
-  for (int v = 0; v < th.nv; ++v) m.vertices[v] = {th(v).x, th(v).y, th(v).z};
-  m.tetrahedra.resize(th.nt);
-  for (int k = 0; k < th.nt; ++k)
-    for (int i = 0; i < 4; ++i) m.tetrahedra[k][i] = th(k, i);
-  if (!th.TheAdjacencesLink) {
-    m.build_adjacency();
-    return m;
-  }
-  m.neighbours.resize(th.nt);
-  for (int k = 0; k < th.nt; ++k)
-    for (int i = 0; i < 4; ++i) {
-      int j = i;
-      const int kk = th.ElementAdj(k, j);
-      m.neighbours[k][i] = (kk < 0 || kk == k) ? -1 : kk;
-    }
-  m.check();
-  return m;
-}
+// The fluid side of the last call.
+using FluidCache3 = dlmfsi_ff::SideCache<FESpace3, SpaceBasis3, dlmfsi::FluidSide3>;
 
-// The fluid side of the last call, reused while the fluid space and the coupled components stay the same
-// (FreeFEM never reuses a space's unique id, so a space rebuilt on a new mesh is never mistaken for it).
-struct FluidCache3 {
-  const FESpace3* space = nullptr;
-  UniqueffId id;
-  std::vector<int> components;
-  std::unique_ptr<SpaceBasis3> basis;
-  std::unique_ptr<dlmfsi::FluidSide3> side;
-
-  const dlmfsi::FluidSide3& get(const FESpace3& vf, const std::vector<int>& comps) {
-    if (side && space == &vf && id == vf && components == comps) return *side;
-    side.reset();
-    basis.reset(new SpaceBasis3(vf));
-    side.reset(new dlmfsi::FluidSide3(convert(vf.Th), *basis, comps));
-    space = &vf;
-    id = vf;
-    components = comps;
-    return *side;
-  }
-};
-
-// The solid side (solid mesh, multiplier fit) and the fits of the map's spaces, reused while the
-// multiplier space and its coupled components stay the same (in a time loop only the map's values change).
-struct SolidCache3 {
-  struct MapFit {
-    const FESpace3* space;
-    UniqueffId id;
-    int comp, degree;
-    std::unique_ptr<SpaceBasis3> basis;
-    std::unique_ptr<dlmfsi::PolynomialBasis3> fit;
-  };
-  const FESpace3* space = nullptr;
-  UniqueffId id;
-  std::vector<int> components;
-  std::unique_ptr<SpaceBasis3> basis;
-  std::unique_ptr<dlmfsi::SolidSide3> side;
-  std::vector<MapFit> fits;
-
-  const dlmfsi::SolidSide3& get(const FESpace3& vs, const std::vector<int>& comps) {
-    if (side && space == &vs && id == vs && components == comps) return *side;
-    fits.clear();
-    side.reset();
-    basis.reset(new SpaceBasis3(vs));
-    side.reset(new dlmfsi::SolidSide3(convert(vs.Th), *basis, comps));
-    space = &vs;
-    id = vs;
-    components = comps;
-    return *side;
-  }
-
-  // The fit of component comp of the map's space vm at the given degree (kept across calls; the three
-  // most recently used).
-  const dlmfsi::PolynomialBasis3* map_fit(const FESpace3& vm, int comp, int degree) {
-    for (auto it = fits.begin(); it != fits.end(); ++it)
-      if (it->space == &vm && it->id == vm && it->comp == comp && it->degree == degree) {
-        std::rotate(it, it + 1, fits.end());
-        return fits.back().fit.get();
-      }
-    MapFit f{&vm, vm, comp, degree, std::make_unique<SpaceBasis3>(vm), nullptr};
-    f.fit = std::make_unique<dlmfsi::PolynomialBasis3>(*f.basis, side->mesh(), degree, std::vector<int>{comp});
-    fits.push_back(std::move(f));
-    return fits.back().fit.get();
-  }
-  // Once per call, before map_fit: keeps the fits of the last call's map.
-  void trim_fits() {
-    if (fits.size() > 3) fits.erase(fits.begin(), fits.end() - 3);
-  }
-};
+// The solid side (solid mesh, multiplier fit) and the fits of the map's spaces of the last calls (the three
+// most recently used).
+using SolidCache3 = dlmfsi_ff::SolidCacheOf<FESpace3, SpaceBasis3, dlmfsi::SolidSide3, dlmfsi::PolynomialBasis3, 3>;
 
 FluidCache3& fluid_cache() {
   static FluidCache3* cache = new FluidCache3;  // never destroyed: FreeFEM tears its spaces down first
@@ -172,27 +72,12 @@ SolidCache3& solid_cache() {
 class Dlmfsi3Op : public E_F0mps {
  public:
   typedef newpMatrice_Creuse<double> Result;
-  // The 2D function's named parameters (dlmfsi.cpp), in the same order.
-  static const int n_name_param = 13;
-  static basicAC_F0::name_and_type name_param[n_name_param];
-  enum { kC1, kC2, kFluid, kSolid, kMethod, kGradient, kQforder, kTol, kSubdivide, kOutside, kOutsideTol, kThreads, kPart };
+  using Args = dlmfsi_ff::CouplingArgs;  // the 2D function's named parameters
 
   Expression fluid_space, solid_space, map[3];
-  Expression nargs[n_name_param];
-  std::vector<Expression> fluid_list, solid_list, part_list;  // literal arrays: one expression per entry
+  const Args named;
 
-  explicit Dlmfsi3Op(const basicAC_F0& args) {
-    basicAC_F0::name_and_type np[n_name_param];
-    for (int i = 0; i < n_name_param; ++i) np[i] = name_param[i];
-    for (int i : {int(kFluid), int(kSolid), int(kPart)})
-      if (args.find(np[i].name).left() == atype<E_Array>()) np[i].type = &typeid(E_Array);
-    args.SetNameParam(n_name_param, np, nargs);
-    for (int i : {int(kFluid), int(kSolid), int(kPart)})
-      if (const E_Array* a = dynamic_cast<const E_Array*>(nargs[i])) {
-        auto& list = i == kFluid ? fluid_list : (i == kSolid ? solid_list : part_list);
-        for (int e = 0; e < a->size(); ++e) list.push_back(to<long>((*a)[e]));
-        nargs[i] = 0;
-      }
+  explicit Dlmfsi3Op(const basicAC_F0& args) : named(args) {
     fluid_space = to<pfes3*>(args[0]);
     solid_space = to<pfes3*>(args[1]);
     // A map that is not three 3D FE functions is a run-time error (catchable), not a compile error.
@@ -213,60 +98,39 @@ class Dlmfsi3Op : public E_F0mps {
   AnyType operator()(Stack stack) const;
 
  private:
-  template <class T>
-  T arg(int i, Stack stack, T otherwise) const {
-    return nargs[i] ? GetAny<T>((*nargs[i])(stack)) : otherwise;
-  }
-  std::string text(int i, Stack stack, const char* otherwise) const {
-    return nargs[i] ? *GetAny<string*>((*nargs[i])(stack)) : std::string(otherwise);
-  }
-  std::vector<int> integers(int i, const std::vector<Expression>& list, Stack stack) const {
+  // The entries of an integer list option as ints.
+  std::vector<int> integers(int i, Stack stack) const {
+    const std::vector<long> v = named.integers(i, stack);
     std::vector<int> out;
-    for (Expression e : list) out.push_back(static_cast<int>(GetAny<long>((*e)(stack))));
-    if (nargs[i]) {
-      KN_<long> v = GetAny<KN_<long> >((*nargs[i])(stack));
-      for (int k = 0; k < v.N(); ++k) out.push_back(static_cast<int>(v[k]));
-    }
+    for (long e : v) out.push_back(static_cast<int>(e));
     return out;
   }
   dlmfsi::CouplingOptions options(Stack stack) const;
 };
 
-basicAC_F0::name_and_type Dlmfsi3Op::name_param[n_name_param] = {
-    {"c1", &typeid(double)},        {"c2", &typeid(double)},        {"fluid", &typeid(KN_<long>)},
-    {"solid", &typeid(KN_<long>)},  {"method", &typeid(string*)},   {"gradient", &typeid(string*)},
-    {"qforder", &typeid(long)},     {"tol", &typeid(double)},       {"subdivide", &typeid(long)},
-    {"outside", &typeid(string*)},  {"outsidetol", &typeid(double)}, {"threads", &typeid(long)},
-    {"part", &typeid(KN_<long>)}};
-
 dlmfsi::CouplingOptions Dlmfsi3Op::options(Stack stack) const {
   using Options = dlmfsi::CouplingOptions;
   Options o;
-  o.c1 = arg(kC1, stack, 1.0);
-  o.c2 = arg(kC2, stack, 1.0);
-  o.fluid_components = integers(kFluid, fluid_list, stack);
-  o.solid_components = integers(kSolid, solid_list, stack);
+  o.c1 = named.arg(Args::kC1, stack, 1.0);
+  o.c2 = named.arg(Args::kC2, stack, 1.0);
+  o.fluid_components = integers(Args::kFluid, stack);
+  o.solid_components = integers(Args::kSolid, stack);
   if (o.fluid_components.empty()) o.fluid_components.push_back(0);
   if (o.solid_components.empty()) o.solid_components.push_back(0);
-  const std::vector<int> part = integers(kPart, part_list, stack);
+  const std::vector<int> part = integers(Args::kPart, stack);
   if (!part.empty()) {
     if (part.size() != 2 || part[1] < 1 || part[0] < 0 || part[0] >= part[1])
       throw dlmfsi::Error("part=[rank, size] needs 0 <= rank < size");
     o.part = part[0];
     o.parts = part[1];
   }
-  const std::string method = text(kMethod, stack, "exact");
+  const std::string method = named.text(Args::kMethod, stack, "exact");
   if (method == "quadrature") throw dlmfsi::Error("method=\"quadrature\" is 2D only; on mesh3 spaces use \"exact\"");
   if (method != "exact") throw dlmfsi::Error("method=\"" + method + "\": expected \"exact\" or \"quadrature\"");
-  const std::string gradient = text(kGradient, stack, "chain");
-  if (gradient == "chain")
-    o.gradient = Options::Gradient::Chain;
-  else if (gradient == "listing")
-    o.gradient = Options::Gradient::Listing;
-  else
-    throw dlmfsi::Error("gradient=\"" + gradient + "\": expected \"chain\" or \"listing\"");
+  o.gradient = named.gradient(stack);
   // Given values are range-checked before they become ints.
-  const long qforder = arg(kQforder, stack, -1L), subdivide = arg(kSubdivide, stack, -1L), threads = arg(kThreads, stack, 1L);
+  const long qforder = named.arg(Args::kQforder, stack, -1L), subdivide = named.arg(Args::kSubdivide, stack, -1L),
+             threads = named.arg(Args::kThreads, stack, 1L);
   if (qforder < -1 || qforder > 40)
     throw dlmfsi::Error("qforder=" + std::to_string(qforder) + " out of range (0 to 40 in 3D, or -1 for the automatic choice)");
   if (subdivide < -1 || subdivide > 4)
@@ -274,14 +138,10 @@ dlmfsi::CouplingOptions Dlmfsi3Op::options(Stack stack) const {
                         " out of range (0 to 4 in 3D, or -1 for the default: 8^subdivide parts per curved tetrahedron)");
   if (threads < 1 || threads > 1024) throw dlmfsi::Error("threads=" + std::to_string(threads) + " must lie in 1 .. 1024");
   o.qforder = static_cast<int>(qforder);
-  o.tol = arg(kTol, stack, o.tol);
+  o.tol = named.arg(Args::kTol, stack, o.tol);
   o.subdivide = static_cast<int>(subdivide);
-  const std::string outside = text(kOutside, stack, "error");
-  if (outside == "drop")
-    o.drop_outside = true;
-  else if (outside != "error")
-    throw dlmfsi::Error("outside=\"" + outside + "\": expected \"error\" or \"drop\"");
-  o.outside_tol = arg(kOutsideTol, stack, o.outside_tol);
+  o.drop_outside = named.drop_outside(stack);
+  o.outside_tol = named.arg(Args::kOutsideTol, stack, o.outside_tol);
   o.threads = static_cast<int>(threads);
   return o;
 }

@@ -1,0 +1,118 @@
+// The steps of fitting a basis by polynomials on the reference element that do not depend on the
+// dimension (PolynomialBasis on triangles, PolynomialBasis3 on tetrahedra).
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <initializer_list>
+#include <vector>
+
+#include "basis.hpp"
+
+namespace dlmfsi {
+
+// The basis functions the listed components are carried by, as dof * components + component, sorted,
+// each once.
+template <int D>
+std::vector<int> listed_functions(const BasisOf<D>& basis, const std::vector<int>& components) {
+  std::vector<int> functions;
+  const int nc = basis.components();
+  for (int c : components) {
+    int first, last;
+    basis.component_dofs(c, first, last);
+    for (int d = first; d < last; ++d) functions.push_back(d * nc + c);
+  }
+  std::sort(functions.begin(), functions.end());
+  functions.erase(std::unique(functions.begin(), functions.end()), functions.end());
+  return functions;
+}
+
+// The monomial coefficients c[f * nm + m] of the functions on element k: interpolation at the nm lattice
+// points lattice(q), c = V^-1 values with inverse = V^-1 (row-major) the lattice's Vandermonde inverse.
+// sample: room for BasisOf::values.
+template <int D, class Lattice>
+void fit_on_lattice(const BasisOf<D>& basis, int k, const std::vector<int>& functions, int nm,
+                    const std::vector<double>& inverse, Lattice lattice, double* sample, double* c) {
+  constexpr int kSlots = BasisOf<D>::kSlots;
+  const std::size_t width = functions.size();
+  std::vector<double> values(static_cast<std::size_t>(nm) * width);
+  for (int q = 0; q < nm; ++q) {
+    basis.values(k, lattice(q), sample);
+    for (std::size_t f = 0; f < width; ++f) values[q * width + f] = sample[functions[f] * kSlots];
+  }
+  for (std::size_t f = 0; f < width; ++f)
+    for (int m = 0; m < nm; ++m) {
+      double s = 0;
+      for (int q = 0; q < nm; ++q) s += inverse[static_cast<std::size_t>(m) * nm + q] * values[q * width + f];
+      c[f * nm + m] = s;
+    }
+}
+
+// Does the fit (nm coefficients per function) give the basis values sample (BasisOf::values' layout) at a
+// point where the monomials take the values v? Up to round-off relative to the sum of the terms' sizes.
+template <int D>
+bool fit_matches(const double* coefficients, int nm, const double* v, const std::vector<int>& functions,
+                 const double* sample) {
+  for (std::size_t f = 0; f < functions.size(); ++f) {
+    double s = 0, scale = 0;
+    for (int m = 0; m < nm; ++m) {
+      s += coefficients[f * nm + m] * v[m];
+      scale += std::fabs(coefficients[f * nm + m] * v[m]);
+    }
+    if (std::fabs(s - sample[functions[f] * BasisOf<D>::kSlots]) > 1e-12 * (scale + 1)) return false;
+  }
+  return true;
+}
+
+// Does evaluate(xi, out) (BasisOf::evaluate's layout) give the basis on element 0, values and derivatives,
+// at the points xi? Relative to the largest entry; sample and check: room for BasisOf::evaluate.
+template <int D, class Evaluate>
+bool fit_reproduces(const BasisOf<D>& basis, std::initializer_list<typename BasisOf<D>::Reference> points,
+                    Evaluate evaluate, const std::vector<int>& functions, double* sample, double* check) {
+  constexpr int kSlots = BasisOf<D>::kSlots;
+  double worst = 0, scale = 1e-300;
+  for (const auto& xi : points) {
+    basis.evaluate(0, xi, sample);
+    evaluate(xi, check);
+    for (int f : functions)
+      for (int d = 0; d < kSlots; ++d) {
+        worst = std::max(worst, std::fabs(sample[f * kSlots + d] - check[f * kSlots + d]));
+        scale = std::max(scale, std::fabs(sample[f * kSlots + d]));
+      }
+  }
+  return !(worst > 1e-9 * scale);
+}
+
+// Components of a vector space built from one scalar element carry the same polynomials: per function, an
+// earlier function whose coefficients (nm each) equal its own bit for bit and that is no twin itself, or -1.
+inline std::vector<int> twin_functions(const std::vector<double>& coefficients, int nm) {
+  const std::size_t count = coefficients.size() / nm;
+  std::vector<int> twin(count, -1);
+  for (std::size_t f = 1; f < count; ++f)
+    for (std::size_t g = 0; g < f && twin[f] < 0; ++g)
+      if (twin[g] < 0 && std::equal(&coefficients[f * nm], &coefficients[f * nm] + nm, &coefficients[g * nm]))
+        twin[f] = static_cast<int>(g);
+  return twin;
+}
+
+// A field's polynomials on the elements: out[first + k * stride + m] += the coefficient of monomial m, on
+// element k, of sum over the fitted functions f of values[global dof of f] * (function f), for the
+// elements of fit (Fit: PolynomialBasis or PolynomialBasis3 of degree nm monomials, fitted on space).
+template <int D, class Fit>
+void add_field_monomials(const BasisOf<D>& space, const double* values, const Fit& fit, int nm, int elements,
+                         std::vector<double>& out, std::size_t first, std::size_t stride) {
+  std::vector<int> dofs(space.local_dofs());
+  const int nc = space.components();
+  for (int k = 0; k < elements; ++k) {
+    space.dofs(k, dofs.data());
+    const double* c = fit.coefficients(k);
+    double* o = &out[first + k * stride];
+    for (int f : fit.functions()) {
+      const double value = values[dofs[f / nc]];
+      for (int m = 0; m < nm; ++m) o[m] += value * c[m];
+      c += nm;
+    }
+  }
+}
+
+}  // namespace dlmfsi

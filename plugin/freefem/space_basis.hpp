@@ -1,0 +1,44 @@
+// A FreeFEM finite element space as the core's Basis: what does not depend on the dimension (the dofs and
+// the buffer of FreeFEM's basis evaluation); SpaceBasis (dlmfsi.cpp) and SpaceBasis3 (dlmfsi3d.cpp) add
+// the evaluation itself.
+#pragma once
+#include "ff++.hpp"
+
+#include <cstddef>
+#include <vector>
+
+#include "basis.hpp"
+
+namespace dlmfsi_ff {
+
+// Space: FESpace or FESpace3.
+template <int D, class Space>
+class SpaceBasisOf : public dlmfsi::BasisOf<D> {
+ public:
+  explicit SpaceBasisOf(const Space& vh) : vh_(vh), nd_(vh[0].NbDoF()), nc_(vh.N) {}
+  int components() const override { return nc_; }
+  int dof_count() const override { return vh_.NbOfDF; }
+  int local_dofs() const override { return nd_; }
+  void component_dofs(int c, int& first, int& last) const override {
+    first = vh_.TFE[0]->begin_dfcomp[c];
+    last = vh_.TFE[0]->end_dfcomp[c];
+  }
+  void dofs(int k, int* global) const override {
+    const auto K = vh_[k];
+    for (int df = 0; df < nd_; ++df) global[df] = K(df);
+  }
+
+ protected:
+  // Room for FreeFEM's basis evaluation on one element, laid out (df, component, operator) with df
+  // fastest; one per thread.
+  KNMK_<double> evaluation_buffer() const {
+    thread_local std::vector<double> buffer;
+    const std::size_t size = static_cast<std::size_t>(nd_) * nc_ * last_operatortype;
+    if (buffer.size() < size) buffer.resize(size);
+    return KNMK_<double>(buffer.data(), nd_, nc_, last_operatortype);
+  }
+  const Space& vh_;
+  int nd_, nc_;
+};
+
+}  // namespace dlmfsi_ff
