@@ -17,6 +17,7 @@
 
 #include "clip.hpp"
 #include "component_pairs.hpp"
+#include "fluid_search.hpp"
 #include "local_block.hpp"
 #include "map.hpp"
 #include "options.hpp"
@@ -26,7 +27,6 @@
 namespace dlmfsi {
 
 class FluidSide;
-class FluidSearch;
 struct CouplingReport;
 
 // What every integrator of one call reads (shared by the threads). Space: BasisOf<D>; Fit: its fitted basis.
