@@ -11,6 +11,7 @@
 #include "errors.hpp"
 #include "predicates3d.hpp"
 #include "rules.hpp"
+#include "validation.hpp"
 
 namespace dlmfsi {
 
@@ -495,41 +496,12 @@ class Assembler3 {
   std::vector<double> fval_, fgrad_, sval_, sgrad_, scratch_;
 };
 
-void check_components(const Basis3& basis, const std::vector<int>& components, const std::string& side,
-                      const std::string& space) {
-  for (int c : components)
-    if (c < 0 || c >= basis.components())
-      throw Error(side + " component " + std::to_string(c) + " out of range (the " + space + " has " +
-                  std::to_string(basis.components()) + ")");
-}
-
-std::string number(double v) {
-  char s[40];
-  std::snprintf(s, sizeof s, "%g", v);
-  return s;
-}
-
 // The 2D contract (validation.hpp) with the 3D limits: rules up to degree 40, 8^subdivide parts per curved
 // tetrahedron (at most 4096), no quadrature method.
 void check_options(const Basis3& fluid_space, const Basis3& multiplier, const CouplingOptions& opt) {
-  const auto& f = opt.fluid_components;
-  const auto& s = opt.solid_components;
-  if (f.size() != s.size())
-    throw Error("fluid and solid component lists differ in length (" + std::to_string(f.size()) + " and " +
-                std::to_string(s.size()) + ")");
-  if (f.empty()) throw Error("no components to couple (fluid and solid are empty)");
-  check_components(fluid_space, f, "fluid", "fluid space");
-  check_components(multiplier, s, "solid", "multiplier space");
-  for (size_t q = 0; q < f.size(); ++q)
-    for (size_t p = 0; p < q; ++p)
-      if (f[p] == f[q] && s[p] == s[q])
-        throw Error("the pair fluid component " + std::to_string(f[q]) + " with solid component " +
-                    std::to_string(s[q]) + " is listed twice (positions " + std::to_string(p) + " and " +
-                    std::to_string(q) + " of fluid= and solid=)");
-  if (opt.gradient == CouplingOptions::Gradient::Listing && opt.c1 != 0 && f.size() != 3)
+  check_pairs_and_weights(fluid_space, multiplier, opt);
+  if (opt.gradient == CouplingOptions::Gradient::Listing && opt.c1 != 0 && opt.fluid_components.size() != 3)
     throw Error("gradient=\"listing\" needs exactly three component pairs (a 3D vector field)");
-  if (!std::isfinite(opt.c1)) throw Error("c1=" + number(opt.c1) + " is not finite");
-  if (!std::isfinite(opt.c2)) throw Error("c2=" + number(opt.c2) + " is not finite");
   if (opt.qforder < -1 || opt.qforder > 40)
     throw Error("qforder=" + std::to_string(opt.qforder) +
                 " out of range (0 to 40 in 3D, or -1 for the automatic choice: a rule of degree 40 has 9261 "
@@ -539,7 +511,7 @@ void check_options(const Basis3& fluid_space, const Basis3& multiplier, const Co
                 " out of range (0 to 4 in 3D, or -1 for the default: each curved solid tetrahedron is split "
                 "into 8^subdivide parts, at most 4096)");
   if (opt.method != CouplingOptions::Method::Exact) throw Error("method=\"quadrature\" is 2D only; use \"exact\"");
-  if (!(opt.outside_tol >= 0)) throw Error("outsidetol=" + number(opt.outside_tol) + " must be a number >= 0");
+  if (!(opt.outside_tol >= 0)) throw Error("outsidetol=" + option_value(opt.outside_tol) + " must be a number >= 0");
   if (opt.threads < 1) throw Error("threads=" + std::to_string(opt.threads) + " must be at least 1");
   if (opt.parts < 1 || opt.part < 0 || opt.part >= opt.parts)
     throw Error("part=[" + std::to_string(opt.part) + ", " + std::to_string(opt.parts) +

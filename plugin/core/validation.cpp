@@ -9,7 +9,8 @@
 
 namespace dlmfsi {
 
-void check_components(const Basis& basis, const std::vector<int>& components, const std::string& side,
+template <int D>
+void check_components(const BasisOf<D>& basis, const std::vector<int>& components, const std::string& side,
                       const std::string& space) {
   for (int c : components)
     if (c < 0 || c >= basis.components())
@@ -17,16 +18,37 @@ void check_components(const Basis& basis, const std::vector<int>& components, co
                   std::to_string(basis.components()) + ")");
 }
 
-namespace {
-
-std::string number(double v) {
+std::string option_value(double v) {
   if (std::isnan(v)) return "NaN";
   char s[40];
   std::snprintf(s, sizeof s, "%g", v);
   return s;
 }
 
-}  // namespace
+template <int D>
+void check_pairs_and_weights(const BasisOf<D>& fluid_space, const BasisOf<D>& multiplier, const CouplingOptions& opt) {
+  const auto& f = opt.fluid_components;
+  const auto& s = opt.solid_components;
+  if (f.size() != s.size())
+    throw Error("fluid and solid component lists differ in length (" + std::to_string(f.size()) + " and " +
+                std::to_string(s.size()) + ")");
+  if (f.empty()) throw Error("no components to couple (fluid and solid are empty)");
+  check_components(fluid_space, f, "fluid", "fluid space");
+  check_components(multiplier, s, "solid", "multiplier space");
+  for (size_t q = 0; q < f.size(); ++q)
+    for (size_t p = 0; p < q; ++p)
+      if (f[p] == f[q] && s[p] == s[q])
+        throw Error("the pair fluid component " + std::to_string(f[q]) + " with solid component " +
+                    std::to_string(s[q]) + " is listed twice (positions " + std::to_string(p) + " and " +
+                    std::to_string(q) + " of fluid= and solid=)");
+  if (!std::isfinite(opt.c1)) throw Error("c1=" + option_value(opt.c1) + " is not finite");
+  if (!std::isfinite(opt.c2)) throw Error("c2=" + option_value(opt.c2) + " is not finite");
+}
+
+template void check_components<2>(const BasisOf<2>&, const std::vector<int>&, const std::string&, const std::string&);
+template void check_components<3>(const BasisOf<3>&, const std::vector<int>&, const std::string&, const std::string&);
+template void check_pairs_and_weights<2>(const BasisOf<2>&, const BasisOf<2>&, const CouplingOptions&);
+template void check_pairs_and_weights<3>(const BasisOf<3>&, const BasisOf<3>&, const CouplingOptions&);
 
 void check_qforder(long qforder) {
   if (qforder < -1 || qforder > kMaxQforder)
@@ -43,29 +65,13 @@ void check_subdivide(long subdivide) {
 }
 
 void check_options(const Basis& fluid_space, const Basis& multiplier, const CouplingOptions& opt) {
-  const auto& f = opt.fluid_components;
-  const auto& s = opt.solid_components;
-  if (f.size() != s.size())
-    throw Error("fluid and solid component lists differ in length (" + std::to_string(f.size()) + " and " +
-                std::to_string(s.size()) + ")");
-  if (f.empty()) throw Error("no components to couple (fluid and solid are empty)");
-  check_components(fluid_space, f, "fluid", "fluid space");
-  check_components(multiplier, s, "solid", "multiplier space");
-  // A pair listed twice would be added twice: the matrix doubled on that block.
-  for (size_t q = 0; q < f.size(); ++q)
-    for (size_t p = 0; p < q; ++p)
-      if (f[p] == f[q] && s[p] == s[q])
-        throw Error("the pair fluid component " + std::to_string(f[q]) + " with solid component " +
-                    std::to_string(s[q]) + " is listed twice (positions " + std::to_string(p) + " and " +
-                    std::to_string(q) + " of fluid= and solid=)");
-  if (opt.gradient == CouplingOptions::Gradient::Listing && f.size() != 2)
+  check_pairs_and_weights(fluid_space, multiplier, opt);
+  if (opt.gradient == CouplingOptions::Gradient::Listing && opt.fluid_components.size() != 2)
     throw Error("gradient=\"listing\" needs exactly two component pairs (a 2D vector field)");
-  if (!std::isfinite(opt.c1)) throw Error("c1=" + number(opt.c1) + " is not finite");
-  if (!std::isfinite(opt.c2)) throw Error("c2=" + number(opt.c2) + " is not finite");
   check_qforder(opt.qforder);
   check_subdivide(opt.subdivide);
-  if (!(opt.tol > 0 && opt.tol < 1)) throw Error("tol=" + number(opt.tol) + " must lie in (0, 1)");
-  if (!(opt.outside_tol >= 0)) throw Error("outsidetol=" + number(opt.outside_tol) + " must be a number >= 0");
+  if (!(opt.tol > 0 && opt.tol < 1)) throw Error("tol=" + option_value(opt.tol) + " must lie in (0, 1)");
+  if (!(opt.outside_tol >= 0)) throw Error("outsidetol=" + option_value(opt.outside_tol) + " must be a number >= 0");
   if (opt.threads < 1) throw Error("threads=" + std::to_string(opt.threads) + " must be at least 1");
   if (opt.parts < 1 || opt.part < 0 || opt.part >= opt.parts)
     throw Error("part=[" + std::to_string(opt.part) + ", " + std::to_string(opt.parts) +
@@ -165,7 +171,7 @@ void check_finite(const CsrMatrix& matrix, const CouplingOptions& opt) {
     if (std::isfinite(matrix.value[e])) continue;
     const auto row = std::upper_bound(matrix.start.begin(), matrix.start.end(), static_cast<int>(e)) - matrix.start.begin() - 1;
     throw Error("the coupling overflows: entry (" + std::to_string(row) + ", " + std::to_string(matrix.column[e]) +
-                ") is " + number(matrix.value[e]) + "; c1=" + number(opt.c1) + " and c2=" + number(opt.c2) +
+                ") is " + option_value(matrix.value[e]) + "; c1=" + option_value(opt.c1) + " and c2=" + option_value(opt.c2) +
                 " are too large for these meshes");
   }
 }

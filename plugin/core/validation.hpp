@@ -12,8 +12,17 @@
 namespace dlmfsi {
 
 // Components named on one side must exist in that side's space ("fluid" / "fluid space", ...).
-void check_components(const Basis& basis, const std::vector<int>& components, const std::string& side,
+template <int D>
+void check_components(const BasisOf<D>& basis, const std::vector<int>& components, const std::string& side,
                       const std::string& space);
+
+// The options of either dimension: component lists of one length, not empty, in range, no pair listed
+// twice (it would be added twice: the matrix doubled on that block); c1 and c2 finite.
+template <int D>
+void check_pairs_and_weights(const BasisOf<D>& fluid_space, const BasisOf<D>& multiplier, const CouplingOptions& opt);
+
+// A number as an option's value in a message ("NaN", "inf", "1e+308").
+std::string option_value(double v);
 
 // The rule degree and the subdivision level (-1: the automatic choice, the default): their costs grow as
 // qforder^2 points per piece and 4^subdivide parts per curved triangle.
