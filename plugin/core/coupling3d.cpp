@@ -4,15 +4,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <exception>
 #include <memory>
-#include <thread>
 
 #include "component_pairs.hpp"
 #include "errors.hpp"
 #include "integrator3d.hpp"
 #include "local_block.hpp"
 #include "predicates3d.hpp"
+#include "run_shares.hpp"
 #include "validation.hpp"
 
 namespace dlmfsi {
@@ -94,31 +93,6 @@ void add_counts(const CouplingReport3& r, CouplingReport3& total) {
     total.worst_outside = r.worst_outside;
     total.worst_tetrahedron = r.worst_tetrahedron;
   }
-}
-
-// Runs worker t on the t-th of contiguous shares of the ordered tetrahedra, each on its own thread, so that
-// the sums come out in the same order for any thread count; rethrows a thread's error.
-void run_shares(const std::vector<std::unique_ptr<Assembler3>>& workers, const std::vector<int>& tets) {
-  const int threads = static_cast<int>(workers.size());
-  const long long count = static_cast<long long>(tets.size());
-  auto share = [&](int t) { return tets.data() + count * t / threads; };
-  if (threads == 1) {
-    workers[0]->run(share(0), share(1));
-    return;
-  }
-  std::vector<std::thread> pool;
-  std::vector<std::exception_ptr> errors(threads);
-  for (int t = 0; t < threads; ++t)
-    pool.emplace_back([&, t] {
-      try {
-        workers[t]->run(share(t), share(t + 1));
-      } catch (...) {
-        errors[t] = std::current_exception();
-      }
-    });
-  for (auto& th : pool) th.join();
-  for (auto& e : errors)
-    if (e) std::rethrow_exception(e);
 }
 
 void check_outside(const CouplingOptions& opt, const CouplingReport3& total) {

@@ -12,15 +12,20 @@ namespace dlmfsi {
 
 PointIntegrator3::PointIntegrator3(const Integrand3& integrand, CouplingReport3& counts)
     : integrand_(integrand), counts_(counts), fluid_functions_(static_cast<int>(integrand.fluid.functions().size())),
-      multiplier_functions_(static_cast<int>(integrand.multiplier.functions().size())),
-      gradients_(integrand.c1 != 0), listing_(integrand.c1 != 0 && !integrand.chain) {}
+      gradients_(integrand.c1 != 0), listing_(integrand.c1 != 0 && !integrand.chain), values_(integrand) {}
 
 void PointIntegrator3::integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) {
   const MappedTet& mt = image.tetrahedron;
   gather(mt, kf, piece, image.degree);
   const int n = static_cast<int>(points_.size());
   counts_.points += n;
-  evaluate(mt, kf, n);
+  eta_.resize(static_cast<size_t>(n));
+  xi_.resize(static_cast<size_t>(n));
+  for (int q = 0; q < n; ++q) {
+    eta_[q] = points_[q].eta;
+    xi_[q] = points_[q].xi;
+  }
+  values_.evaluate(kf, eta_.data(), mt.k, xi_.data(), n);
   // Pairs that repeat an earlier pair's functions (on elements of the shared fits) copy its sums.
   const PolynomialBasis3 &fluid = integrand_.fluid, &multiplier = integrand_.multiplier;
   const bool twins = !listing_ && fluid.fitted() && multiplier.fitted() && fluid.shared(kf) && multiplier.shared(mt.k);
@@ -57,48 +62,13 @@ void PointIntegrator3::gather(const MappedTet& mt, int kf, const Piece3& piece, 
   });
 }
 
-void PointIntegrator3::evaluate(const MappedTet& mt, int kf, int n) {
-  const size_t nn = static_cast<size_t>(n);
-  eta_.resize(nn);
-  xi_.resize(nn);
-  for (int q = 0; q < n; ++q) {
-    eta_[q] = points_[q].eta;
-    xi_[q] = points_[q].xi;
-  }
-  fval_.resize(nn * fluid_functions_);
-  fgrad_.resize(3 * nn * fluid_functions_);
-  sval_.resize(nn * multiplier_functions_);
-  sgrad_.resize(3 * nn * multiplier_functions_);
-  evaluate_side(integrand_.fluid, integrand_.fluid_space, kf, eta_.data(), n, fval_.data(), fgrad_.data());
-  evaluate_side(integrand_.multiplier, integrand_.multiplier_space, mt.k, xi_.data(), n, sval_.data(), sgrad_.data());
-}
-
-void PointIntegrator3::evaluate_side(const PolynomialBasis3& poly, const Basis3& space, int k, const Point3* at, int n,
-                                     double* value, double* gradient) {
-  if (poly.fitted()) {
-    poly.evaluate_points(k, at, n, value, gradients_ ? gradient : nullptr);
-    return;
-  }
-  const int nc = space.components();
-  scratch_.resize(static_cast<size_t>(space.local_dofs()) * nc * 4);
-  const std::vector<int>& functions = poly.functions();
-  for (int q = 0; q < n; ++q) {
-    space.evaluate(k, at[q], scratch_.data());
-    for (size_t f = 0; f < functions.size(); ++f) {
-      const double* o = &scratch_[functions[f] * 4];
-      value[f * n + q] = o[0];
-      for (int i = 0; i < 3; ++i) gradient[(3 * f + i) * n + q] = o[1 + i];
-    }
-  }
-}
-
 void PointIntegrator3::weigh(const MappedTet& mt, int n, const std::vector<char>& read) {
   const double(&aj)[3][3] = mt.affine_value.jac;
   for (int f = 0; f < fluid_functions_; ++f) {
     if (!read[f]) continue;
-    double* v = &fval_[static_cast<size_t>(f) * n];
-    double* g[3] = {&fgrad_[(3 * static_cast<size_t>(f)) * n], &fgrad_[(3 * static_cast<size_t>(f) + 1) * n],
-                    &fgrad_[(3 * static_cast<size_t>(f) + 2) * n]};
+    double* v = values_.fluid_value(f);
+    double* const gradient = values_.fluid_gradient(f);
+    double* g[3] = {gradient, gradient + n, gradient + 2 * n};
     for (int q = 0; q < n; ++q) {
       const double w = points_[q].weight;
       v[q] *= integrand_.c2 * w;
@@ -117,12 +87,12 @@ void PointIntegrator3::add_pairs(int n, bool twins, LocalBlock& block) {
     if (twins && pair.source >= 0) continue;  // added with its source
     const std::vector<int>&fi = pair.fluid_functions, &si = pair.solid_functions;
     for (size_t a = 0; a < fi.size(); ++a) {
-      const double* phi = &fval_[static_cast<size_t>(fi[a]) * n];
-      const double* gphi = &fgrad_[3 * static_cast<size_t>(fi[a]) * n];
+      const double* phi = values_.fluid_value(fi[a]);
+      const double* gphi = values_.fluid_gradient(fi[a]);
       double* col = block.column(pair.fluid_first + static_cast<int>(a)) + pair.solid_first;
       for (size_t b = 0; b < si.size(); ++b) {
-        const double* psi = &sval_[static_cast<size_t>(si[b]) * n];
-        const double* gpsi = &sgrad_[3 * static_cast<size_t>(si[b]) * n];
+        const double* psi = values_.multiplier_value(si[b]);
+        const double* gpsi = values_.multiplier_gradient(si[b]);
         double sum = 0;
         for (int q = 0; q < n; ++q) sum += psi[q] * phi[q];
         if (gradients_ && !listing_)
@@ -142,11 +112,11 @@ void PointIntegrator3::add_listing(const MappedTet& mt, int n, LocalBlock& block
   for (int a = 0; a < 3; ++a)
     for (int c = 0; c < 3; ++c)
       for (size_t ia = 0; ia < pairs[c].fluid_functions.size(); ++ia) {
-        const double* gphi = &fgrad_[3 * static_cast<size_t>(pairs[c].fluid_functions[ia]) * n];
+        const double* gphi = values_.fluid_gradient(pairs[c].fluid_functions[ia]);
         // the column of pair c's ia-th fluid dof, from pair a's first multiplier dof on
         double* col = block.column(pairs[c].fluid_first + static_cast<int>(ia)) + pairs[a].solid_first;
         for (size_t ib = 0; ib < pairs[a].solid_functions.size(); ++ib) {
-          const double* gpsi = &sgrad_[3 * static_cast<size_t>(pairs[a].solid_functions[ib]) * n];
+          const double* gpsi = values_.multiplier_gradient(pairs[a].solid_functions[ib]);
           double sum = 0;
           for (int q = 0; q < n; ++q) {
             const double jac = mt.affine ? aj[a][c] : points_[q].jac[3 * a + c];

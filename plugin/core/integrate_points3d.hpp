@@ -2,7 +2,7 @@
 // itself) and either gradient product. A rule on each tetrahedron of the piece: the points with their
 // reference coordinates in the fluid element (eta, affine in y) and in the solid element (xi: the affine
 // pull-back, or Newton's from the interpolation of the piece's corners' pull-backs), both bases evaluated
-// on all points at once, then
+// on all points at once (point_values3d.hpp), then
 //   block_ij += sum_q w_q [c2 psi_i phi_j + c1 grad_s psi_i . (J^T grad phi_j)],  w_q = volume weight / det J,
 // or with the listings' reversed product (three pairs, the pair index being the vector component)
 //   grad psi : G = sum_{a,b} d_b psi^(a) sum_c dX_a/ds_c d_b phi^(c).
@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "integrator3d.hpp"
+#include "point_values3d.hpp"
 
 namespace dlmfsi {
 
@@ -29,11 +30,6 @@ class PointIntegrator3 : public PieceIntegrator3 {
   };
   // The rule's points on the piece's tetrahedra, into points_.
   void gather(const MappedTet& mt, int kf, const Piece3& piece, int degree);
-  // Both bases at the n gathered points: fval_[f * n + q] and fgrad_[(3 f + i) * n + q] for the fitted
-  // functions (likewise sval_, sgrad_); through the element's own evaluation where it is not polynomial.
-  void evaluate(const MappedTet& mt, int kf, int n);
-  void evaluate_side(const PolynomialBasis3& poly, const Basis3& space, int k, const Point3* at, int n, double* value,
-                     double* gradient);
   // Folds the weights (and the chain rule's jacobian) into the fluid functions read.
   void weigh(const MappedTet& mt, int n, const std::vector<char>& read);
   void add_pairs(int n, bool twins, LocalBlock& block);
@@ -41,11 +37,11 @@ class PointIntegrator3 : public PieceIntegrator3 {
 
   const Integrand3& integrand_;
   CouplingReport3& counts_;
-  int fluid_functions_, multiplier_functions_;
+  int fluid_functions_;
   bool gradients_, listing_;  // c1 != 0; and the listings' product
   std::vector<PointData> points_;
   std::vector<Point3> eta_, xi_;
-  std::vector<double> fval_, fgrad_, sval_, sgrad_, scratch_;
+  PointValues3 values_;
 };
 
 }  // namespace dlmfsi
