@@ -4,14 +4,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <exception>
 #include <memory>
-#include <thread>
 
 #include "component_pairs.hpp"
 #include "errors.hpp"
 #include "integrator.hpp"
 #include "local_block.hpp"
+#include "run_shares.hpp"
 #include "validation.hpp"
 
 namespace dlmfsi {
@@ -120,31 +119,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 int product_degree(int fluid_degree, int multiplier_degree, double c2) {
   if (fluid_degree < 0 || multiplier_degree < 0) return 10;
   return std::max(0, fluid_degree + multiplier_degree - (c2 == 0 ? 2 : 0));
-}
-
-// Runs assembler t on the t-th of contiguous shares of the ordered triangles, each on its own thread, so
-// that the sums come out in the same order for any thread count; rethrows a thread's error.
-void run_shares(const std::vector<std::unique_ptr<Assembler>>& assemblers, const std::vector<int>& triangles) {
-  const int threads = static_cast<int>(assemblers.size());
-  const long long count = static_cast<long long>(triangles.size());
-  auto share = [&](int t) { return triangles.data() + count * t / threads; };
-  if (threads == 1) {
-    assemblers[0]->run(share(0), share(1));
-    return;
-  }
-  std::vector<std::thread> pool;
-  std::vector<std::exception_ptr> errors(threads);
-  for (int t = 0; t < threads; ++t)
-    pool.emplace_back([&, t] {
-      try {
-        assemblers[t]->run(share(t), share(t + 1));
-      } catch (...) {
-        errors[t] = std::current_exception();
-      }
-    });
-  for (auto& th : pool) th.join();
-  for (auto& e : errors)
-    if (e) std::rethrow_exception(e);
 }
 
 // The areas turned into the caller's units (the fluid side's coordinates are 2^-scale of the caller's);

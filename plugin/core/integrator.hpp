@@ -11,7 +11,7 @@
 // choose_integrator picks them, once per call and thread.
 //
 // The interfaces are templates on the mapped element and its piece so that a tetrahedral assembly can use
-// them as they are (PieceIntegratorOf<ClippedImage3, Piece3>, with the same LocalBlock).
+// them as they are: integrator3d.hpp (PieceIntegratorOf<ClippedImage3, Piece3>, with the same LocalBlock).
 #pragma once
 #include <memory>
 

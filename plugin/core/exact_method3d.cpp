@@ -1,0 +1,110 @@
+#include "exact_method3d.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "coupling3d.hpp"
+#include "errors.hpp"
+#include "predicates3d.hpp"
+
+namespace dlmfsi {
+
+namespace {
+
+using Tet = std::array<Point3, 4>;
+
+// The reference tetrahedron refined `level` times by the red rule (each tetrahedron into its four corner
+// tetrahedra and the four of its inner octahedron, split along one diagonal): 8^level positive tetrahedra.
+const std::vector<Tet>& reference_subdivision(int level) {
+  static const auto table = [] {
+    std::vector<std::vector<Tet>> all(5);
+    all[0] = {Tet{Point3{0, 0, 0}, Point3{1, 0, 0}, Point3{0, 1, 0}, Point3{0, 0, 1}}};
+    for (int l = 1; l < 5; ++l)
+      for (const Tet& t : all[l - 1]) {
+        auto mid = [&](int i, int j) { return 0.5 * (t[i] + t[j]); };
+        const Point3 m01 = mid(0, 1), m02 = mid(0, 2), m03 = mid(0, 3), m12 = mid(1, 2), m13 = mid(1, 3), m23 = mid(2, 3);
+        const Tet children[8] = {{t[0], m01, m02, m03}, {m01, t[1], m12, m13}, {m02, m12, t[2], m23},
+                                 {m03, m13, m23, t[3]}, {m01, m02, m03, m13}, {m01, m02, m12, m13},
+                                 {m02, m03, m13, m23}, {m02, m12, m13, m23}};
+        for (Tet c : children) {
+          if (volume6(c[0], c[1], c[2], c[3]) < 0) std::swap(c[2], c[3]);
+          all[l].push_back(c);
+        }
+      }
+    return all;
+  }();
+  return table[level];
+}
+
+// The sum of the piece's tetrahedra's volumes, each |volume6| / 6 (as the integrators sum them).
+double piece_volume(const Piece3& piece) {
+  double volume = 0;
+  piece.for_each_tetrahedron([&](Point3 o, Point3 p, Point3 q, Point3 r) { volume += std::fabs(volume6(o, p, q, r)) / 6; });
+  return volume;
+}
+
+}  // namespace
+
+ExactMethod3::ExactMethod3(const FluidSide3& fluid, FluidSearch3& search, int product_degree, int qforder,
+                           int subdivide, std::unique_ptr<PieceIntegrator3> general,
+                           std::unique_ptr<PieceIntegrator3> affine, CouplingReport3& counts)
+    : fluid_(fluid), search_(search), product_degree_(product_degree), qforder_(qforder), subdivide_(subdivide),
+      general_(std::move(general)), affine_(std::move(affine)), counts_(counts) {}
+
+double ExactMethod3::integrate(const MappedTet& mt, LocalBlock& block) {
+  // Curved faces: the reference tetrahedron refined, corners mapped by the true map; on each
+  // sub-tetrahedron the jacobian varies 2^level times less.
+  const int level = mt.planar ? 0 : (subdivide_ >= 0 ? subdivide_ : 2);
+  const ClippedImage3 image{mt, rule_degree(mt, std::ldexp(1.0, -level), !mt.planar)};
+  if (mt.planar) return clip(image, mt.image, block);
+  double outside = 0;
+  for (const Tet& sub : reference_subdivision(level)) {
+    Point3 img[4];
+    for (int i = 0; i < 4; ++i) {
+      img[i] = mt.at(sub[i]).x;
+      if (!std::isfinite(img[i].x) || !std::isfinite(img[i].y) || !std::isfinite(img[i].z))
+        throw Error("the map is NaN or Inf inside solid tetrahedron " + std::to_string(mt.k));
+    }
+    outside += clip(image, img, block);
+  }
+  return outside;
+}
+
+// Where the map is not affine, the integrand in fluid coordinates, f(X^-1(y)) / det grad X, is smooth but
+// not polynomial; its error under a rule of degree p + q falls like (d/3)^q, d the map's nonlinearity (how
+// far grad X strays from the affine jacobian, map3d.hpp; measured on P1b maps, d = 0.05 to 0.4, where
+// q = 14 gives 1e-12 at d = 0.37). So q = 12 / -log10(d/3), at most 16, for an error about 1e-12 on planar
+// images; on curved images, whose error is the band between the curved boundary and the facets (1e-3 to
+// 1e-6), 1e-8 (qforder overrides).
+int ExactMethod3::rule_degree(const MappedTet& mt, double scale, bool curved) {
+  if (mt.affine) return product_degree_;
+  if (qforder_ >= 0) return qforder_;
+  const double d = std::max(scale * mt.nonlinearity, 1e-300) / 3;
+  const double digits = curved ? 8 : 12;
+  const int q = d >= 0.5 ? 16 : std::min(16, std::max(2, static_cast<int>(std::ceil(digits / -std::log10(d)))));
+  const int degree = std::min(40, product_degree_ + q);
+  counts_.curved_rule_degree = std::max(counts_.curved_rule_degree, degree);
+  return degree;
+}
+
+double ExactMethod3::clip(const ClippedImage3& image, const Point3 img[4], LocalBlock& block) {
+  const int o = orient3d(img[0], img[1], img[2], img[3]);
+  if (o <= 0)
+    throw Error("the map folds solid tetrahedron " + std::to_string(image.tetrahedron.k) +
+                " (a sub-tetrahedron's image is " + (o == 0 ? "flat)" : "negatively oriented)"));
+  PieceIntegrator3& integrator = affine_ && image.tetrahedron.affine ? *affine_ : *general_;
+  double covered = 0;
+  search_.for_each_piece(img, hint_, [&](int kf, const Piece3& piece) {
+    ++counts_.pieces;
+    block.enter_fluid_element(fluid_.dofs(kf));
+    const double volume = piece_volume(piece);
+    integrator.integrate(image, kf, piece, block);
+    covered += volume;
+  });
+  return volume6(img[0], img[1], img[2], img[3]) / 6 - covered;
+}
+
+}  // namespace dlmfsi

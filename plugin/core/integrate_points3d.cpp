@@ -1,0 +1,131 @@
+#include "integrate_points3d.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "coupling3d.hpp"
+#include "errors.hpp"
+#include "predicates3d.hpp"
+#include "rules.hpp"
+
+namespace dlmfsi {
+
+PointIntegrator3::PointIntegrator3(const Integrand3& integrand, CouplingReport3& counts)
+    : integrand_(integrand), counts_(counts), fluid_functions_(static_cast<int>(integrand.fluid.functions().size())),
+      gradients_(integrand.c1 != 0), listing_(integrand.c1 != 0 && !integrand.chain), values_(integrand) {}
+
+void PointIntegrator3::integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) {
+  const MappedTet& mt = image.tetrahedron;
+  gather(mt, kf, piece, image.degree);
+  const int n = static_cast<int>(points_.size());
+  counts_.points += n;
+  eta_.resize(static_cast<size_t>(n));
+  xi_.resize(static_cast<size_t>(n));
+  for (int q = 0; q < n; ++q) {
+    eta_[q] = points_[q].eta;
+    xi_[q] = points_[q].xi;
+  }
+  values_.evaluate(kf, eta_.data(), mt.k, xi_.data(), n);
+  // Pairs that repeat an earlier pair's functions (on elements of the shared fits) copy its sums.
+  const PolynomialBasis3 &fluid = integrand_.fluid, &multiplier = integrand_.multiplier;
+  const bool twins = !listing_ && fluid.fitted() && multiplier.fitted() && fluid.shared(kf) && multiplier.shared(mt.k);
+  weigh(mt, n, twins ? integrand_.pairs.fluid_read_by_sources() : integrand_.pairs.fluid_read());
+  add_pairs(n, twins, block);
+  if (listing_) add_listing(mt, n, block);
+}
+
+void PointIntegrator3::gather(const MappedTet& mt, int kf, const Piece3& piece, int degree) {
+  const auto& rule = tetrahedron_rule(degree);
+  Point3 xi_corner[Piece3::kMaxVertices];
+  MapValue3 mv;
+  for (int v = 0; v < piece.n; ++v)
+    xi_corner[v] = mt.affine ? mt.affine_reference(piece.v[v]) : mt.pull_back(piece.v[v], mt.affine_reference(piece.v[v]), mv);
+  points_.clear();
+  piece.for_each_tetrahedron_index([&](int i0, int i1, int i2, int i3) {
+    const Point3 tet[4] = {piece.v[i0], piece.v[i1], piece.v[i2], piece.v[i3]};
+    const double vol = std::fabs(volume6(tet[0], tet[1], tet[2], tet[3])) / 6;
+    const Point3 xt[4] = {xi_corner[i0], xi_corner[i1], xi_corner[i2], xi_corner[i3]};
+    for (const RulePoint3& rp : rule) {
+      const Point3 y = from_reference(tet, rp.xi);
+      Point3 xi = from_reference(xt, rp.xi);
+      double det = mt.affine_det;
+      std::array<double, 9> jac{};
+      if (!mt.affine) {
+        xi = mt.pull_back(y, xi, mv);
+        det = det3(mv.jac);
+        if (!(det > 0)) throw Error("the map folds solid tetrahedron " + std::to_string(mt.k));
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b) jac[3 * a + b] = mv.jac[a][b];
+      }
+      points_.push_back({integrand_.fluid.to_reference(kf, y), xi, vol * rp.weight / det, jac});
+    }
+  });
+}
+
+void PointIntegrator3::weigh(const MappedTet& mt, int n, const std::vector<char>& read) {
+  const double(&aj)[3][3] = mt.affine_value.jac;
+  for (int f = 0; f < fluid_functions_; ++f) {
+    if (!read[f]) continue;
+    double* v = values_.fluid_value(f);
+    double* const gradient = values_.fluid_gradient(f);
+    double* g[3] = {gradient, gradient + n, gradient + 2 * n};
+    for (int q = 0; q < n; ++q) {
+      const double w = points_[q].weight;
+      v[q] *= integrand_.c2 * w;
+      if (!gradients_ || listing_) continue;
+      const double* jq = mt.affine ? &aj[0][0] : points_[q].jac.data();
+      const double d0 = g[0][q], d1 = g[1][q], d2 = g[2][q];
+      for (int b = 0; b < 3; ++b) g[b][q] = integrand_.c1 * w * (d0 * jq[b] + d1 * jq[3 + b] + d2 * jq[6 + b]);
+    }
+  }
+}
+
+void PointIntegrator3::add_pairs(int n, bool twins, LocalBlock& block) {
+  const ComponentPairs& pairs = integrand_.pairs;
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    const ComponentPair& pair = pairs[p];
+    if (twins && pair.source >= 0) continue;  // added with its source
+    const std::vector<int>&fi = pair.fluid_functions, &si = pair.solid_functions;
+    for (size_t a = 0; a < fi.size(); ++a) {
+      const double* phi = values_.fluid_value(fi[a]);
+      const double* gphi = values_.fluid_gradient(fi[a]);
+      double* col = block.column(pair.fluid_first + static_cast<int>(a)) + pair.solid_first;
+      for (size_t b = 0; b < si.size(); ++b) {
+        const double* psi = values_.multiplier_value(si[b]);
+        const double* gpsi = values_.multiplier_gradient(si[b]);
+        double sum = 0;
+        for (int q = 0; q < n; ++q) sum += psi[q] * phi[q];
+        if (gradients_ && !listing_)
+          for (int q = 0; q < n; ++q) sum += gpsi[q] * gphi[q] + gpsi[n + q] * gphi[n + q] + gpsi[2 * n + q] * gphi[2 * n + q];
+        col[b] += sum;
+        if (twins)
+          for (int copy : pair.copies) block.column(pairs[copy].fluid_first + static_cast<int>(a))[pairs[copy].solid_first + static_cast<int>(b)] += sum;
+      }
+    }
+  }
+}
+
+// The printed listings' reversed product, Grad(X,Y,Z) * Grad(u,v,w): pair index = vector component.
+void PointIntegrator3::add_listing(const MappedTet& mt, int n, LocalBlock& block) {
+  const double(&aj)[3][3] = mt.affine_value.jac;
+  const ComponentPairs& pairs = integrand_.pairs;
+  for (int a = 0; a < 3; ++a)
+    for (int c = 0; c < 3; ++c)
+      for (size_t ia = 0; ia < pairs[c].fluid_functions.size(); ++ia) {
+        const double* gphi = values_.fluid_gradient(pairs[c].fluid_functions[ia]);
+        // the column of pair c's ia-th fluid dof, from pair a's first multiplier dof on
+        double* col = block.column(pairs[c].fluid_first + static_cast<int>(ia)) + pairs[a].solid_first;
+        for (size_t ib = 0; ib < pairs[a].solid_functions.size(); ++ib) {
+          const double* gpsi = values_.multiplier_gradient(pairs[a].solid_functions[ib]);
+          double sum = 0;
+          for (int q = 0; q < n; ++q) {
+            const double jac = mt.affine ? aj[a][c] : points_[q].jac[3 * a + c];
+            sum += integrand_.c1 * points_[q].weight * jac *
+                   (gpsi[q] * gphi[q] + gpsi[n + q] * gphi[n + q] + gpsi[2 * n + q] * gphi[2 * n + q]);
+          }
+          col[ib] += sum;
+        }
+      }
+}
+
+}  // namespace dlmfsi

@@ -1,0 +1,47 @@
+// The point-by-point piece integrator for tetrahedra: any basis (fitted, or evaluated through the element
+// itself) and either gradient product. A rule on each tetrahedron of the piece: the points with their
+// reference coordinates in the fluid element (eta, affine in y) and in the solid element (xi: the affine
+// pull-back, or Newton's from the interpolation of the piece's corners' pull-backs), both bases evaluated
+// on all points at once (point_values3d.hpp), then
+//   block_ij += sum_q w_q [c2 psi_i phi_j + c1 grad_s psi_i . (J^T grad phi_j)],  w_q = volume weight / det J,
+// or with the listings' reversed product (three pairs, the pair index being the vector component)
+//   grad psi : G = sum_{a,b} d_b psi^(a) sum_c dX_a/ds_c d_b phi^(c).
+// On elements of the shared fits, a pair that repeats an earlier pair's functions (ComponentPairs) copies
+// its sums.
+#pragma once
+#include <array>
+#include <vector>
+
+#include "integrator3d.hpp"
+#include "point_values3d.hpp"
+
+namespace dlmfsi {
+
+class PointIntegrator3 : public PieceIntegrator3 {
+ public:
+  PointIntegrator3(const Integrand3& integrand, CouplingReport3& counts);
+  void integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) override;
+
+ private:
+  struct PointData {
+    Point3 eta, xi;
+    double weight;
+    std::array<double, 9> jac;  // dX/ds where the map is not affine
+  };
+  // The rule's points on the piece's tetrahedra, into points_.
+  void gather(const MappedTet& mt, int kf, const Piece3& piece, int degree);
+  // Folds the weights (and the chain rule's jacobian) into the fluid functions read.
+  void weigh(const MappedTet& mt, int n, const std::vector<char>& read);
+  void add_pairs(int n, bool twins, LocalBlock& block);
+  void add_listing(const MappedTet& mt, int n, LocalBlock& block);
+
+  const Integrand3& integrand_;
+  CouplingReport3& counts_;
+  int fluid_functions_;
+  bool gradients_, listing_;  // c1 != 0; and the listings' product
+  std::vector<PointData> points_;
+  std::vector<Point3> eta_, xi_;
+  PointValues3 values_;
+};
+
+}  // namespace dlmfsi

@@ -1,0 +1,41 @@
+// The integrator interface (integrator.hpp) for tetrahedra: the integrand over the same spaces in 3D, the
+// clipped image of a solid tetrahedron, and the selection of the integrators.
+//
+// A TetrahedronIntegrator adds int_T f_ij ds over a solid tetrahedron T to the tetrahedron's LocalBlock: the
+// exact method (exact_method3d.hpp) clips T's image against the fluid and hands each piece to a
+// PieceIntegrator3: point by point through either basis and either gradient product (integrate_points3d.hpp),
+// or from the piece's moments for bases of degree <= 1 on affine images (integrate_moments3d.hpp).
+#pragma once
+#include <memory>
+
+#include "clip3d.hpp"
+#include "fluid_search3d.hpp"
+#include "integrator.hpp"
+#include "map3d.hpp"
+#include "polynomial_basis3d.hpp"
+
+namespace dlmfsi {
+
+class FluidSide3;
+struct CouplingReport3;
+
+using Integrand3 = IntegrandOf<Basis3, PolynomialBasis3>;
+
+// The straight image of a solid tetrahedron, or of one of the sub-tetrahedra of a curved one, clipped
+// against the fluid: its pieces are integrated in fluid coordinates.
+struct ClippedImage3 {
+  const MappedTet& tetrahedron;
+  int degree;  // of the rule on a piece: exact for the product where the map is affine
+};
+
+using PieceIntegrator3 = PieceIntegratorOf<ClippedImage3, Piece3>;
+using TetrahedronIntegrator = ElementIntegratorOf<MappedTet>;
+
+// The exact method (the only one in 3D) with, for every piece, the point-by-point integrator, and for the
+// pieces of affine images the moments where both bases are fitted, of degree <= 1, and the product is the
+// chain rule's (or c1 = 0). search: the calling thread's search on the fluid side; counts: its report.
+std::unique_ptr<TetrahedronIntegrator> choose_integrator(const Integrand3& integrand, const FluidSide3& fluid,
+                                                         FluidSearch3& search, const CouplingOptions& options,
+                                                         CouplingReport3& counts);
+
+}  // namespace dlmfsi
