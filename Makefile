@@ -70,7 +70,7 @@ fuzz:
 	  -artifact_prefix=$(BUILD)-fuzz/ $(BUILD)-fuzz/corpus
 
 # The README's two commands as a new user meets them: a bare Debian 12 root (debootstrap minbase), a clean
-# clone of HEAD, `make test` then `make compare` in a chroot (scripts/fresh-check; root, 20-30 minutes).
+# clone of HEAD, `make test` then `make compare` in a chroot (scripts/fresh-check; root, about an hour).
 fresh-check:
 	OUT=$(abspath $(OUT)) scripts/fresh-check
 
