@@ -82,11 +82,23 @@ class Job:
         return default if self.summary is None else self.summary.get(key, default)
 
 
-def run_jobs(jobs, runs_dir, parallel=2, cpu_limit=None, out_option=True, reuse=False, say=sys.stderr.write):
+def last_summary(log_path):
+    """The last `dlmfsi-result` line of a log as a dict, or None (no such line, or no log)."""
+    if not os.path.exists(log_path):
+        return None
+    with open(log_path, errors="replace") as log:
+        lines = [l for l in log.read().splitlines() if l.startswith("dlmfsi-result")]
+    return parse_result(lines[-1]) if lines else None
+
+
+def run_jobs(jobs, runs_dir, parallel=2, cpu_limit=None, out_option=True, reuse=False, resume=False,
+             say=sys.stderr.write):
     """Run the jobs, `parallel` at a time, each in runs_dir/<tag>/ (log.txt; with out_option, `-out` that
     folder). cpu_limit: CPU seconds per process (RLIMIT_CPU, so that the other jobs on the machine do not
     count; a wall cap of 4x stops a process that waits), recorded as job.timeout. reuse: read the logs of
-    an earlier run instead of running. Fills job.summary, rc, wall, timeout; returns the jobs."""
+    an earlier run instead of running (a job without a log gets no summary); resume: the same for the jobs
+    whose log has a summary line, the others are run. Fills job.summary, rc, wall, timeout; returns the
+    jobs."""
     import concurrent.futures
     import resource
 
@@ -96,9 +108,10 @@ def run_jobs(jobs, runs_dir, parallel=2, cpu_limit=None, out_option=True, reuse=
 
     def one(job):
         d = os.path.join(runs_dir, job.tag)
-        os.makedirs(d, exist_ok=True)
         log_path = os.path.join(d, "log.txt")
-        if not reuse:
+        kept = reuse or (resume and last_summary(log_path) is not None)
+        if not kept:
+            os.makedirs(d, exist_ok=True)
             cmd = [FF, job.script] + job.args + (["-out", d] if out_option else [])
             t0 = time.time()
             with open(log_path, "w") as log:
@@ -111,16 +124,17 @@ def run_jobs(jobs, runs_dir, parallel=2, cpu_limit=None, out_option=True, reuse=
                 except subprocess.TimeoutExpired:
                     job.rc = 124
             job.wall = time.time() - t0
-        with open(log_path, errors="replace") as log:
-            text = log.read()
-        lines = [l for l in text.splitlines() if l.startswith("dlmfsi-result")]
-        job.summary = parse_result(lines[-1]) if lines else None
-        if reuse:
+        text = ""
+        if os.path.exists(log_path):
+            with open(log_path, errors="replace") as log:
+                text = log.read()
+        job.summary = last_summary(log_path)
+        if kept:
             job.rc = 0 if job.summary else 1
             job.wall = job.get("seconds")
         # over the CPU cap: SIGXCPU/SIGKILL (the plugin re-run's parent then prints "Killed" and exits 1)
         job.timeout = job.rc in (124, -9, -24, 137, 152) or "\nKilled" in text
-        say("  %s %s (%.1f s, exit %s)\n" % ("kept" if reuse else "done", job.tag, job.wall or 0, job.rc))
+        say("  %s %s (%.1f s, exit %s)\n" % ("kept" if kept else "done", job.tag, job.wall or 0, job.rc))
         return job
 
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, parallel)) as pool:
