@@ -17,6 +17,7 @@
 
 #include "../tests/core/support.hpp"
 #include "coupling.hpp"
+#include "field_map.hpp"
 
 using namespace dlmfsi;
 

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <vector>
 
+#include "errors.hpp"
 #include "lattice.hpp"
 #include "matrix_inverse.hpp"
 
@@ -90,6 +93,33 @@ JacobianSign jacobian_sign(const std::function<double(Point)>& det, int n, int m
     stack.push_back({{m12, m20, m01}, s.depth + 1});
   }
   return result;
+}
+
+void check_fold(const TriangleMap& map) {
+  auto det = [&map](Point xi) {
+    Point x, d1, d2;
+    map.reference_derivatives(xi, x, d1, d2);
+    return cross(d1, d2);  // det dX/dxi = det dX/ds det ds/dxi: the sign of det dX/ds (s counter-clockwise)
+  };
+  Point where;
+  JacobianSign sign;
+  if (map.fitted()) {
+    sign = jacobian_sign(det, 2 * (map.degree() - 1), 10, where);
+  } else {
+    sign = JacobianSign::Positive;
+    for (int p = 0; p < monomial_count(8) && sign == JacobianSign::Positive; ++p)
+      if (!(det(lattice_point(8, p)) > 0)) {
+        where = lattice_point(8, p);
+        sign = JacobianSign::Folds;
+      }
+  }
+  if (sign == JacobianSign::Positive) return;
+  char at[120];
+  std::snprintf(at, sizeof at, " at reference point (%.3g, %.3g)", where.x, where.y);
+  if (sign == JacobianSign::Folds)
+    throw Error("the map folds " + map.name() + " (its jacobian determinant is not positive" + at + ")");
+  throw Error("the map nearly folds " + map.name() + " (its jacobian determinant comes within about 1e-6 of zero" +
+              at + ")");
 }
 
 }  // namespace dlmfsi

@@ -14,6 +14,7 @@
 #include <functional>
 
 #include "point.hpp"
+#include "triangle_map.hpp"
 
 namespace dlmfsi {
 
@@ -22,5 +23,10 @@ enum class JacobianSign { Positive, Folds, NearlyFolds };
 // det(xi): the jacobian determinant at a reference point, a polynomial of degree n (0 <= n <= 10).
 // where: a reference point at which det <= 0 (Folds) or the centre of an undecided sub-triangle.
 JacobianSign jacobian_sign(const std::function<double(Point)>& det, int n, int max_depth, Point& where);
+
+// Throws Error naming the triangle when det dX/ds is not positive somewhere on the triangle of map (a fold)
+// or comes within about 1e-6 of zero relative to its scale (a near fold): certified by jacobian_sign with
+// max_depth 10 for a fitted map, sampled on the degree-8 lattice otherwise.
+void check_fold(const TriangleMap& map);
 
 }  // namespace dlmfsi

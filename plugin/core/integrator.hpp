@@ -19,7 +19,7 @@
 #include "component_pairs.hpp"
 #include "fluid_search.hpp"
 #include "local_block.hpp"
-#include "map.hpp"
+#include "mapped_triangle.hpp"
 #include "options.hpp"
 #include "polynomial_basis.hpp"
 #include "split.hpp"
@@ -93,7 +93,7 @@ std::unique_ptr<TriangleIntegrator> choose_integrator(const Integrand& integrand
                                                       FluidSearch& search, const SolidMap& map,
                                                       const CouplingOptions& options, CouplingReport& counts);
 
-// Images of triangles whose nonlinearity (map.hpp) is above this are split into parts on which it is at
+// Images of triangles whose nonlinearity (map_shape.hpp) is above this are split into parts on which it is at
 // most this (split.hpp), where nonlinear_rule_degree gives a rule of degree p + 20.
 constexpr double kLeafNonlinearity = 0.25;
 

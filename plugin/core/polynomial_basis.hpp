@@ -1,16 +1,16 @@
-// Fast evaluation of a Basis. On each element the basis functions are polynomials in the reference
-// coordinates (polynomial elements on straight triangles): they are fitted on the degree-d lattice, then
-// evaluated by monomials, with physical derivatives through the element's affine map. Elements that are
-// affine-equivalent (P0, P1, P1b, P2, P1nc, ...) share one fit: each element is checked against it with a
-// single basis evaluation at a generic point, and fitted on its own only where it differs (e.g. where dof
-// orientation or sign depends on the element). All elements are checked at construction.
+// Fast evaluation of a Basis: on each element the basis functions are polynomials in the reference
+// coordinates (BasisFit), evaluated by monomials, with physical derivatives through the element's affine
+// map (AffineElementMaps). All elements are checked at construction.
 #pragma once
 #include <cstddef>
 #include <vector>
 
+#include "affine_element_maps.hpp"
 #include "basis.hpp"
+#include "basis_fit.hpp"
 #include "lattice.hpp"
 #include "mesh.hpp"
+#include "points_evaluation.hpp"
 
 namespace dlmfsi {
 
@@ -26,19 +26,20 @@ class PolynomialBasis {
   // Safe to call from several threads when fitted() (no call into the basis then).
   void evaluate(int k, Point xi, double* out) const;
 
-  // The fitted functions at n points of element k at once (fitted() only), monomials formed once per point:
-  // value[f * n + p] for the f-th of functions() at point p, and when dx and dy are not null the physical
-  // first derivatives in the same layout.
-  void evaluate_points(int k, const Point* xi, int n, double* value, double* dx, double* dy) const;
+  // The fitted functions at n points of element k at once (fitted() only): evaluate_at_points.
+  void evaluate_points(int k, const Point* xi, int n, double* value, double* dx, double* dy) const {
+    evaluate_at_points(fit_, k, maps_.inverse_jacobian(k), xi, n, value, dx, dy);
+  }
 
   // Degree 0 or 1 only: the fitted functions' values at xi and their (constant) physical gradients, one
   // entry per function.
   void evaluate_affine(int k, Point xi, double* value, double* dx, double* dy) const {
-    const double* c = coefficients(k);
-    const double* j = &inverse_jacobian_[4 * static_cast<size_t>(k)];
-    const size_t width = functions_.size();
-    for (size_t f = 0; f < width; ++f, c += nm_) {
-      if (nm_ == 1) {
+    const double* c = fit_.coefficients(k);
+    const double* j = maps_.inverse_jacobian(k);
+    const int nm = fit_.terms();
+    const size_t width = fit_.functions().size();
+    for (size_t f = 0; f < width; ++f, c += nm) {
+      if (nm == 1) {
         value[f] = c[0];
         dx[f] = dy[f] = 0;
         continue;
@@ -51,48 +52,24 @@ class PolynomialBasis {
   }
 
   // The reference coordinates of point x in element k (the inverse of the element's affine map).
-  Point to_reference(int k, Point x) const {
-    const double* j = &inverse_jacobian_[4 * static_cast<size_t>(k)];
-    const Point d = x - mesh_.vertex(k, 0);
-    return {j[0] * d.x + j[1] * d.y, j[2] * d.x + j[3] * d.y};
-  }
+  Point to_reference(int k, Point x) const { return maps_.to_reference(k, x); }
 
-  bool fitted() const { return degree_ >= 0; }
-  int degree() const { return degree_; }
-  // The fitted functions, as dof * components + component.
-  const std::vector<int>& functions() const { return functions_; }
-  // Does element k use the shared fit? There, function f equals function twin(f) (an earlier one, with the
-  // same coefficients bit for bit) when twin(f) >= 0: the components of a vector space of one element.
-  bool shared(int k) const { return slot_[k] < 0; }
-  int twin(int f) const { return twin_.empty() ? -1 : twin_[f]; }
-  // Monomial coefficients (monomial_count(degree) per function, in functions() order) on element k.
-  const double* coefficients(int k) const { return slot_[k] < 0 ? reference_.data() : &own_[slot_[k]]; }
-  // The coefficients of each function's derivatives in xi1 then xi2 (monomial_count(degree - 1) each).
-  const double* derivative_coefficients(int k) const {
-    return slot_[k] < 0 ? reference_derivative_.data()
-                        : &own_derivative_[slot_[k] / nm_ * 2 * static_cast<size_t>(monomial_count(degree_ - 1))];
-  }
+  // The fit (BasisFit's accessors).
+  bool fitted() const { return fit_.fitted(); }
+  int degree() const { return fit_.degree(); }
+  const std::vector<int>& functions() const { return fit_.functions(); }
+  bool shared(int k) const { return fit_.shared(k); }
+  int twin(int f) const { return fit_.twin(f); }
+  const double* coefficients(int k) const { return fit_.coefficients(k); }
+  const double* derivative_coefficients(int k) const { return fit_.derivative_coefficients(k); }
 
  private:
-  void fit(int k, double* coefficients);
-  void derive(const std::vector<double>& coefficients, std::vector<double>& derivative) const;
-  void check(int k);
   template <int NM>
   void evaluate_fitted(const double* coef, const double* jac, const double* v, const double* d1, const double* d2,
                        double* out) const;
-  template <int NM>
-  void evaluate_points_fitted(int k, const Point* xi, int n, double* value, double* dx, double* dy) const;
   const Basis& basis_;
-  const Mesh& mesh_;
-  int degree_, nm_, nc_;
-  std::vector<int> functions_;
-  std::vector<double> reference_;  // the shared fit
-  std::vector<int> twin_;          // per function: an earlier function with the same shared fit, or -1
-  std::vector<int> slot_;          // per element: -1 shared fit, else offset in own_
-  std::vector<double> own_;        // element fits that differ from the shared one
-  std::vector<double> reference_derivative_, own_derivative_;  // derivative_coefficients of both
-  std::vector<double> inverse_jacobian_;  // per element: d xi / d x, 4 entries (any basis: to_reference)
-  std::vector<double> sample_, check_;
+  AffineElementMaps maps_;
+  BasisFit fit_;
 };
 
 }  // namespace dlmfsi

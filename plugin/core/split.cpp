@@ -58,7 +58,7 @@ bool split_image(const MappedTriangle& mt, int level, double target, int max_dep
     double nl = 0;
     if (t.depth >= level) {
       const Point img[3] = {image_of(t.q[0]), image_of(t.q[1]), image_of(t.q[2])};
-      nl = mt.nonlinearity_on(t.q, img);
+      nl = nonlinearity_on(mt, t.q, img);
       if (nl <= target) {
         leaves.push_back(t);
         leaf_nonlinearity.push_back(nl);

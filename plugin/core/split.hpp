@@ -20,7 +20,7 @@
 #pragma once
 #include <vector>
 
-#include "map.hpp"
+#include "mapped_triangle.hpp"
 
 namespace dlmfsi {
 

@@ -17,6 +17,7 @@
 
 #include "adapter.hpp"
 #include "coupling.hpp"
+#include "field_map.hpp"
 #include "coupling_args.hpp"
 #include "errors.hpp"
 #include "ranks.hpp"

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "coupling.hpp"
+#include "field_map.hpp"
 #include "support.hpp"
 
 using namespace dlmfsi;

@@ -9,6 +9,7 @@
 #include "clip.hpp"
 #include "component_pairs.hpp"
 #include "coupling.hpp"
+#include "field_map.hpp"
 #include "integrate_batch.hpp"
 #include "integrate_moments.hpp"
 #include "integrate_points.hpp"

@@ -1,0 +1,41 @@
+#include "in_place_sum.hpp"
+
+#include <algorithm>
+#include <cstddef>
+
+#include "buffer_room.hpp"
+
+namespace dlmfsi {
+
+void InPlaceSum::start(const CsrMatrix& m) {
+  room(stamp_, m.column.size());
+  if (stamp_.size() < m.column.size()) stamp_.resize(m.column.size(), 0u);
+  if (++stamp_value_ == 0) {  // wrapped: clear the stamps
+    std::fill(stamp_.begin(), stamp_.end(), 0u);
+    stamp_value_ = 1;
+  }
+}
+
+bool InPlaceSum::sum_rows(CsrMatrix& m, int first, int last, const std::vector<std::vector<Triplet>>& parts) {
+  size_t covered = 0;  // entries set
+  for (const auto& p : parts)
+    for (const Triplet& t : p) {
+      if (t.row < first || t.row >= last) continue;
+      const int* b = m.column.data() + m.start[t.row];
+      const int* e = m.column.data() + m.start[t.row + 1];
+      const int* at = std::lower_bound(b, e, t.col);
+      if (at == e || *at != t.col) return false;  // a new entry: the pattern changed
+      const size_t k = static_cast<size_t>(at - m.column.data());
+      if (stamp_[k] == stamp_value_) {
+        m.value[k] += t.value;
+      } else {
+        stamp_[k] = stamp_value_;
+        m.value[k] = t.value;
+        ++covered;
+      }
+    }
+  // otherwise entries of the old pattern are gone
+  return covered == static_cast<size_t>(m.start[last] - m.start[first]);
+}
+
+}  // namespace dlmfsi
