@@ -68,7 +68,8 @@ double ExactMethod3::integrate(const MappedTet& mt, LocalBlock& block) {
       if (!std::isfinite(img[i].x) || !std::isfinite(img[i].y) || !std::isfinite(img[i].z))
         throw Error("the map is NaN or Inf inside solid tetrahedron " + std::to_string(mt.k));
     }
-    outside += clip(image, img, block);
+    const ClippedImage3 part{mt, image.degree, sub.data(), img};
+    outside += clip(part, img, block);
   }
   return outside;
 }

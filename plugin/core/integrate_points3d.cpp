@@ -16,7 +16,7 @@ PointIntegrator3::PointIntegrator3(const Integrand3& integrand, CouplingReport3&
 
 void PointIntegrator3::integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) {
   const MappedTet& mt = image.tetrahedron;
-  gather(mt, kf, piece, image.degree);
+  gather(image, kf, piece);
   const int n = static_cast<int>(points_.size());
   counts_.points += n;
   eta_.resize(static_cast<size_t>(n));
@@ -34,12 +34,13 @@ void PointIntegrator3::integrate(const ClippedImage3& image, int kf, const Piece
   if (listing_) add_listing(mt, n, block);
 }
 
-void PointIntegrator3::gather(const MappedTet& mt, int kf, const Piece3& piece, int degree) {
-  const auto& rule = tetrahedron_rule(degree);
+void PointIntegrator3::gather(const ClippedImage3& image, int kf, const Piece3& piece) {
+  const MappedTet& mt = image.tetrahedron;
+  const auto& rule = tetrahedron_rule(image.degree);
   Point3 xi_corner[Piece3::kMaxVertices];
   MapValue3 mv;
   for (int v = 0; v < piece.n; ++v)
-    xi_corner[v] = mt.affine ? mt.affine_reference(piece.v[v]) : mt.pull_back(piece.v[v], mt.affine_reference(piece.v[v]), mv);
+    xi_corner[v] = mt.affine ? mt.affine_reference(piece.v[v]) : mt.pull_back(piece.v[v], image.guess(piece.v[v]), mv);
   points_.clear();
   piece.for_each_tetrahedron_index([&](int i0, int i1, int i2, int i3) {
     const Point3 tet[4] = {piece.v[i0], piece.v[i1], piece.v[i2], piece.v[i3]};

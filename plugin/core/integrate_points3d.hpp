@@ -29,7 +29,7 @@ class PointIntegrator3 : public PieceIntegrator3 {
     std::array<double, 9> jac;  // dX/ds where the map is not affine
   };
   // The rule's points on the piece's tetrahedra, into points_.
-  void gather(const MappedTet& mt, int kf, const Piece3& piece, int degree);
+  void gather(const ClippedImage3& image, int kf, const Piece3& piece);
   // Folds the weights (and the chain rule's jacobian) into the fluid functions read.
   void weigh(const MappedTet& mt, int n, const std::vector<char>& read);
   void add_pairs(int n, bool twins, LocalBlock& block);

@@ -26,6 +26,12 @@ using Integrand3 = IntegrandOf<Basis3, PolynomialBasis3>;
 struct ClippedImage3 {
   const MappedTet& tetrahedron;
   int degree;  // of the rule on a piece: exact for the product where the map is affine
+  // For a sub-tetrahedron: its reference corners and their images, whose affine interpolant gives Newton's
+  // first guess (null for the whole image: MappedTet::affine_reference).
+  const Point3* sub_xi = nullptr;
+  const Point3* sub_y = nullptr;
+  // Newton's first guess for the reference point of y.
+  Point3 guess(Point3 y) const;
 };
 
 using PieceIntegrator3 = PieceIntegratorOf<ClippedImage3, Piece3>;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -240,6 +242,7 @@ void MappedTet::prepare(const Mesh3& solid_mesh, const SolidMap3& map, int kk) {
     nonlinearity = 0;
   } else {
     classify();
+    if (!affine) check_fold();
   }
   if (affine) {
     // dX/ds = [image edges] [solid edges]^-1
@@ -306,6 +309,56 @@ void MappedTet::classify() {
       if (off > tol) planar = false;
     }
   for (Point3 xi : {Point3{0.25, 0.25, 0.25}, Point3{0.1, 0.2, 0.3}, Point3{0.5, 0.15, 0.2}}) deviation(xi);
+}
+
+DetSample MappedTet::jacobian_det(Point3 xi) const {
+  // d[i][a] = dX_a/dxi_i = sum_m c_a[m] f v_j, computed with an error <= (nm + degree + 1) eps A[i][a],
+  // A[i][a] = sum_m |c_a[m] f v_j| >= |d[i][a]|; the triple product then errs by at most
+  // ((1 + g)^3 - 1 + 4 eps) perm(A) with g that factor (perm: the permanent, the sum of the six
+  // products of the determinant without signs).
+  const int nm = monomial_count3(degree_);
+  double v[monomial_count3(kMaxDegree)];
+  monomial_values3(degree_, xi, v);
+  double d[3][3] = {}, a[3][3] = {};
+  const auto& derivative = monomial_derivatives3(degree_);
+  for (int m = 0; m < nm; ++m)
+    for (int i = 0; i < 3; ++i) {
+      const int j = derivative[m].index[i];
+      if (j < 0) continue;
+      const double dm = derivative[m].factor[i] * v[j];
+      for (int c = 0; c < 3; ++c) {
+        d[i][c] += c_[c][m] * dm;
+        a[i][c] += std::fabs(c_[c][m] * dm);
+      }
+    }
+  const double det = det3(d);
+  const double perm = a[0][0] * (a[1][1] * a[2][2] + a[1][2] * a[2][1]) + a[0][1] * (a[1][0] * a[2][2] + a[1][2] * a[2][0]) +
+                      a[0][2] * (a[1][0] * a[2][1] + a[1][1] * a[2][0]);
+  const double eps = std::numeric_limits<double>::epsilon();
+  return {det, 4 * (nm + degree_ + 3) * eps * perm};
+}
+
+void MappedTet::check_fold() const {
+  Point3 where;
+  JacobianSign sign = JacobianSign::Positive;
+  if (degree_ >= 1) {
+    sign = jacobian_sign3([this](Point3 xi) { return jacobian_det(xi); }, 3 * (degree_ - 1), kFoldDepth,
+                          kFoldTetrahedra, where);
+  } else {
+    // Not a polynomial: sampled on the degree-8 lattice (dX/dxi_i = dX/ds e_i has the sign of dX/ds).
+    for (int p = 0; p < monomial_count3(8) && sign == JacobianSign::Positive; ++p)
+      if (!(det3(map_->evaluate(k, lattice_point3(8, p)).jac) > 0)) {
+        where = lattice_point3(8, p);
+        sign = JacobianSign::Folds;
+      }
+  }
+  if (sign == JacobianSign::Positive) return;
+  char at[160];
+  std::snprintf(at, sizeof at, " at reference point (%.3g, %.3g, %.3g)", where.x, where.y, where.z);
+  if (sign == JacobianSign::Folds)
+    throw Error("the map folds " + name(k) + " (its jacobian determinant is not positive" + at + ")");
+  throw Error("the map nearly folds " + name(k) + " (its jacobian determinant comes within about 1e-6 of zero" + at +
+              ", or its certification needs more than " + std::to_string(kFoldTetrahedra) + " sub-tetrahedra)");
 }
 
 Point3 MappedTet::pull_back(Point3 y, Point3 xi, MapValue3& value) const {

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "basis.hpp"
+#include "fold3d.hpp"
 #include "lattice3d.hpp"
 #include "mesh3d.hpp"
 #include "polynomial_basis3d.hpp"
@@ -72,6 +73,10 @@ class FieldMap3 : public SolidMap3 {
 class MappedTet {
  public:
   static constexpr int kMaxDegree = 6;
+  // The fold certification's limits (fold3d.hpp): 10 levels of red refinement (det within about 4^-10 of
+  // zero, relative, is a near fold) and 4096 sub-tetrahedra tested per solid tetrahedron.
+  static constexpr int kFoldDepth = 10;
+  static constexpr int kFoldTetrahedra = 4096;
   int k = -1;
   Point3 solid[4];   // corners in the reference configuration
   Point3 image[4];   // X at the corners
@@ -106,6 +111,10 @@ class MappedTet {
 
  private:
   void classify();
+  // Throws Error when det dX/dxi is not certified positive on the whole tetrahedron (fold3d.hpp).
+  void check_fold() const;
+  // det dX/dxi of the fitted polynomial at xi and a bound on its round-off.
+  DetSample jacobian_det(Point3 xi) const;
   // value and reference-coordinate derivatives d[i] = dX/dxi_i of the fitted polynomial
   void polynomial(Point3 xi, Point3& x, Point3 d[3]) const;
   void set_jacobian(const Point3 d[3], MapValue3& v) const;  // v.jac = dX/dxi (ds/dxi)^-1
