@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
 #include "coupling3d.hpp"
 #include "errors.hpp"
 #include "predicates3d.hpp"
+#include "split3d.hpp"
 
 namespace dlmfsi {
 
@@ -59,7 +61,8 @@ double ExactMethod3::integrate(const MappedTet& mt, LocalBlock& block) {
   // sub-tetrahedron the jacobian varies 2^level times less.
   const int level = mt.planar ? 0 : (subdivide_ >= 0 ? subdivide_ : 2);
   const ClippedImage3 image{mt, rule_degree(mt, std::ldexp(1.0, -level), !mt.planar)};
-  if (mt.planar) return clip(image, mt.image, block);
+  if (mt.affine) return clip(image, mt.image, block);
+  if (mt.planar) return clip_or_split(image, reference_subdivision(0)[0].data(), mt.image, block);
   double outside = 0;
   for (const Tet& sub : reference_subdivision(level)) {
     Point3 img[4];
@@ -69,7 +72,31 @@ double ExactMethod3::integrate(const MappedTet& mt, LocalBlock& block) {
         throw Error("the map is NaN or Inf inside solid tetrahedron " + std::to_string(mt.k));
     }
     const ClippedImage3 part{mt, image.degree, sub.data(), img};
-    outside += clip(part, img, block);
+    outside += clip_or_split(part, sub.data(), img, block);
+  }
+  return outside;
+}
+
+double ExactMethod3::clip_or_split(const ClippedImage3& image, const Point3 xi[4], const Point3 y[4],
+                                   LocalBlock& block) {
+  const MappedTet& mt = image.tetrahedron;
+  if (qforder_ >= 0 || nonlinearity_on(mt, xi, y) <= kSplitNonlinearity3) return clip(image, y, block);
+  if (!split_part3(mt, xi, y, kPartNonlinearity3, kMaxPartDepth3, kMaxParts3, parts_)) {
+    char msg[300];
+    std::snprintf(msg, sizeof msg,
+                  "the map nearly folds solid tetrahedron %d: its nonlinearity stays above %.3g on parts of 2^-%d of "
+                  "its size, or on more than %d parts",
+                  mt.k, kPartNonlinearity3, kMaxPartDepth3, kMaxParts3);
+    throw Error(msg);
+  }
+  ++counts_.split;
+  counts_.parts += static_cast<long>(parts_.size());
+  // Each part gets the rule of its own nonlinearity (a rule of 2^-level of the whole's on a sub-tetrahedron
+  // of a curved image: the same scale).
+  double outside = 0;
+  for (const MapPart3& part : parts_) {
+    const ClippedImage3 piece{mt, part_rule_degree(part.nonlinearity, !mt.planar), part.xi, part.y};
+    outside += clip(piece, part.y, block);
   }
   return outside;
 }
@@ -86,6 +113,15 @@ int ExactMethod3::rule_degree(const MappedTet& mt, double scale, bool curved) {
   const double d = std::max(scale * mt.nonlinearity, 1e-300) / 3;
   const double digits = curved ? 8 : 12;
   const int q = d >= 0.5 ? 16 : std::min(16, std::max(2, static_cast<int>(std::ceil(digits / -std::log10(d)))));
+  const int degree = std::min(40, product_degree_ + q);
+  counts_.curved_rule_degree = std::max(counts_.curved_rule_degree, degree);
+  return degree;
+}
+
+int ExactMethod3::part_rule_degree(double nonlinearity, bool curved) {
+  const double d = std::max(nonlinearity, 1e-300) / 3;
+  const double digits = curved ? 8 : 12;
+  const int q = std::min(16, std::max(2, static_cast<int>(std::ceil(digits / -std::log10(d)))));
   const int degree = std::min(40, product_degree_ + q);
   counts_.curved_rule_degree = std::max(counts_.curved_rule_degree, degree);
   return degree;

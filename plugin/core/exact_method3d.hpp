@@ -8,8 +8,10 @@
 // The volume outside the fluid mesh is the image's volume less the pieces'.
 #pragma once
 #include <memory>
+#include <vector>
 
 #include "integrator3d.hpp"
+#include "split3d.hpp"
 
 namespace dlmfsi {
 
@@ -29,6 +31,21 @@ class ExactMethod3 : public TetrahedronIntegrator {
   // Clips the straight tetrahedron img (the image, or a sub-tetrahedron's) and integrates its pieces;
   // returns img's volume less the pieces'.
   double clip(const ClippedImage3& image, const Point3 img[4], LocalBlock& block);
+  // clip(), or where the map's nonlinearity on the straight tetrahedron y (the images of the reference
+  // points xi) is above kSplitNonlinearity3 and qforder is automatic, clip() of its parts (split3d.hpp),
+  // each with the rule of its own nonlinearity; throws Error when the split needs more than its limits.
+  double clip_or_split(const ClippedImage3& image, const Point3 xi[4], const Point3 y[4], LocalBlock& block);
+  // The rule for a part of nonlinearity d (rule_degree's formula with scale 1).
+  int part_rule_degree(double nonlinearity, bool curved);
+
+  // Images (or sub-tetrahedra) of nonlinearity_on above 1.5 are split into parts of nonlinearity <= 1, at
+  // most 20 levels down and 20000 parts per straight tetrahedron split. Measured on a P2 map whose edge
+  // midpoint slides by t towards a corner (the fold at t = 1/4; tests/core/test_fold3d.cpp): t = 0.1
+  // (nonlinearity 1.2) is right to 4e-15 with one rule of degree p + 16, t = 0.2 (2.4) only to 3e-9; its
+  // parts of nonlinearity <= 1 give 7e-15, and 2.7e-14 at t = 0.24 (4719 parts).
+  static constexpr double kSplitNonlinearity3 = 1.5, kPartNonlinearity3 = 1;
+  static constexpr int kMaxPartDepth3 = 20, kMaxParts3 = 20000;
+  std::vector<MapPart3> parts_;
 
   const FluidSide3& fluid_;
   FluidSearch3& search_;

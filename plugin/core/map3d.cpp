@@ -188,6 +188,21 @@ void MappedTet::set_jacobian(const Point3 d[3], MapValue3& v) const {
     for (int b = 0; b < 3; ++b) v.jac[a][b] = dx[a][0] * inv_[0][b] + dx[a][1] * inv_[1][b] + dx[a][2] * inv_[2][b];
 }
 
+void MappedTet::reference_derivatives(Point3 xi, Point3& x, Point3 d[3]) const {
+  if (degree_ >= 1) {
+    polynomial(xi, x, d);
+    return;
+  }
+  // dX/dxi_i = dX/ds e_i
+  const MapValue3 v = map_->evaluate(k, xi);
+  x = v.x;
+  const Point3 e[3] = {solid[1] - solid[0], solid[2] - solid[0], solid[3] - solid[0]};
+  for (int i = 0; i < 3; ++i)
+    d[i] = {v.jac[0][0] * e[i].x + v.jac[0][1] * e[i].y + v.jac[0][2] * e[i].z,
+            v.jac[1][0] * e[i].x + v.jac[1][1] * e[i].y + v.jac[1][2] * e[i].z,
+            v.jac[2][0] * e[i].x + v.jac[2][1] * e[i].y + v.jac[2][2] * e[i].z};
+}
+
 MapValue3 MappedTet::at(Point3 xi) const {
   if (degree_ < 1) return map_->evaluate(k, xi);
   MapValue3 v;
@@ -271,17 +286,7 @@ void MappedTet::classify() {
   nonlinearity = 0;
   auto deviation = [&](Point3 xi) {
     Point3 x, d[3];
-    if (degree_ >= 1) {
-      polynomial(xi, x, d);
-    } else {  // dX/dxi_i = dX/ds e_i
-      const MapValue3 v = map_->evaluate(k, xi);
-      x = v.x;
-      const Point3 e[3] = {solid[1] - solid[0], solid[2] - solid[0], solid[3] - solid[0]};
-      for (int i = 0; i < 3; ++i)
-        d[i] = {v.jac[0][0] * e[i].x + v.jac[0][1] * e[i].y + v.jac[0][2] * e[i].z,
-                v.jac[1][0] * e[i].x + v.jac[1][1] * e[i].y + v.jac[1][2] * e[i].z,
-                v.jac[2][0] * e[i].x + v.jac[2][1] * e[i].y + v.jac[2][2] * e[i].z};
-    }
+    reference_derivatives(xi, x, d);
     if (!finite(x)) throw Error("the map is NaN or Inf inside " + name(k));
     const Point3 line = from_reference(image, xi);
     const double dev = std::fabs(x.x - line.x) + std::fabs(x.y - line.y) + std::fabs(x.z - line.z);

@@ -94,6 +94,9 @@ class MappedTet {
 
   // X and its jacobian (with respect to s) at reference point xi.
   MapValue3 at(Point3 xi) const;
+  // X and its reference-coordinate derivatives d[i] = dX/dxi_i at xi (of the fitted polynomial, or of the
+  // map itself when its degree is unknown).
+  void reference_derivatives(Point3 xi, Point3& x, Point3 d[3]) const;
 
   // The reference point of y under the affine interpolant of the corner images (for affine tetrahedra,
   // the pull-back itself).
