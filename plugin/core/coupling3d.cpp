@@ -19,12 +19,11 @@ namespace dlmfsi {
 std::string CouplingReport3::summary() const {
   char s[512];
   std::snprintf(s, sizeof s,
-                "dlmfsi: %ld solid tetrahedra (%ld affine, %ld planar, %ld curved; %ld split into %ld parts), %ld pieces, "
-                "%ld points, "
-                "degrees fluid %d multiplier %d rule %d/%d, image volume %.6g, outside %.3g, %.3f s "
-                "(setup %.3f, pieces %.3f, matrix %.3f)",
-                solid_tetrahedra, affine, planar, curved, split, parts, pieces, points, fluid_degree, solid_degree, rule_degree,
-                curved_rule_degree, image_volume, outside_volume, seconds, setup_seconds, pieces_seconds,
+                "dlmfsi: %ld solid tetrahedra (%ld affine, %ld planar, %ld curved; %ld split into %ld parts), "
+                "%ld pieces, %ld points, degrees fluid %d multiplier %d rule %d/%d, image volume %.6g, outside %.3g, "
+                "%.3f s (setup %.3f, pieces %.3f, matrix %.3f)",
+                solid_tetrahedra, affine, planar, curved, split, parts, pieces, points, fluid_degree, solid_degree,
+                rule_degree, curved_rule_degree, image_volume, outside_volume, seconds, setup_seconds, pieces_seconds,
                 seconds - setup_seconds - pieces_seconds);
   return s;
 }

@@ -93,7 +93,9 @@ bool certified(const BernsteinTable& t, int size, const std::vector<double>& v, 
 
 }  // namespace
 
-double bernstein_amplification3(int n) { return bernstein_table(std::max(0, std::min(n, kMaxJacobianDegree3))).amplification; }
+double bernstein_amplification3(int n) {
+  return bernstein_table(std::max(0, std::min(n, kMaxJacobianDegree3))).amplification;
+}
 
 JacobianSign jacobian_sign3(const std::function<DetSample(Point3)>& det, int n, int max_depth, int max_tetrahedra,
                             Point3& where, int* tested) {
@@ -137,9 +139,8 @@ JacobianSign jacobian_sign3(const std::function<DetSample(Point3)>& det, int n, 
     const Tet& t = s.q;
     auto mid = [&](int i, int j) { return 0.5 * (t[i] + t[j]); };
     const Point3 m01 = mid(0, 1), m02 = mid(0, 2), m03 = mid(0, 3), m12 = mid(1, 2), m13 = mid(1, 3), m23 = mid(2, 3);
-    const Tet children[8] = {{t[0], m01, m02, m03}, {m01, t[1], m12, m13}, {m02, m12, t[2], m23},
-                             {m03, m13, m23, t[3]}, {m01, m02, m03, m13}, {m01, m02, m12, m13},
-                             {m02, m03, m13, m23}, {m02, m12, m13, m23}};
+    const Tet children[8] = {{t[0], m01, m02, m03}, {m01, t[1], m12, m13}, {m02, m12, t[2], m23}, {m03, m13, m23, t[3]},
+                             {m01, m02, m03, m13},  {m01, m02, m12, m13},  {m02, m03, m13, m23},  {m02, m12, m13, m23}};
     for (const Tet& c : children) stack.push_back({c, s.depth + 1});
   }
   if (tested) *tested = count;

@@ -2,14 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <limits>
-#include <memory>
 #include <string>
 #include <vector>
 
 #include "errors.hpp"
-#include "polynomial_fit.hpp"
+#include "map_fold3d.hpp"
 #include "predicates3d.hpp"
 
 namespace dlmfsi {
@@ -34,132 +31,6 @@ void inverse_of_columns(Point3 e1, Point3 e2, Point3 e3, double inv[3][3]) {
 const Point3 kCorners[4] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
 
 }  // namespace
-
-int FieldMap3::fit_degree(const Basis3* const space[3], const int comp[3]) {
-  int degree = 0;
-  for (int a = 0; a < 3; ++a) {
-    if (comp[a] < 0 || comp[a] >= space[a]->components()) throw Error("map component out of range");
-    const int d = polynomial_degree(*space[a], {comp[a]});
-    if (d < 0) return -1;
-    degree = std::max(degree, d);
-  }
-  return degree < 1 || degree > MappedTet::kMaxDegree ? -1 : degree;
-}
-
-FieldMap3::FieldMap3(const Mesh3& solid, const Basis3* const space[3], const double* const coef[3], const int comp[3],
-                     const PolynomialBasis3* const fit[3]) {
-  for (int a = 0; a < 3; ++a) {
-    part_[a] = {space[a], coef[a], comp[a], 0, 0};
-    space[a]->component_dofs(comp[a], part_[a].first, part_[a].last);
-    for (int i = 0; i < 4; ++i) corner_dof_[a][i] = -1;
-  }
-  degree_ = fit_degree(space, comp);
-  if (degree_ < 0) return;  // not polynomial (or constant): evaluate the map itself
-  const int nm = monomial_count3(degree_);
-  monomial_coef_.assign(static_cast<size_t>(solid.size()) * 3 * nm, 0.0);
-  corner_exact_.assign(solid.size(), 1);
-  std::unique_ptr<PolynomialBasis3> own[3];
-  const PolynomialBasis3* used[3] = {nullptr, nullptr, nullptr};
-  for (int a = 0; a < 3; ++a) {
-    const Part& p = part_[a];
-    if (fit && fit[a] && fit[a]->degree() == degree_) {
-      used[a] = fit[a];
-    } else {
-      // X, Y and Z are often the same space and component (functions of one scalar space): one fit.
-      for (int b = 0; b < a && !used[a]; ++b)
-        if (part_[b].space == p.space && part_[b].comp == p.comp) used[a] = used[b];
-      if (!used[a]) {
-        own[a] = std::make_unique<PolynomialBasis3>(*p.space, solid, degree_, std::vector<int>{p.comp});
-        used[a] = own[a].get();
-      }
-    }
-    const PolynomialBasis3& poly = *used[a];
-    if (!poly.fitted()) {
-      degree_ = -1;
-      monomial_coef_.clear();
-      corner_exact_.clear();
-      return;
-    }
-    const int nc = p.space->components();
-    // The Lagrange dof at each corner, from the shared fit's values there (1 for it, 0 for the others).
-    if (solid.size() > 0) {
-      double v[monomial_count3(kMaxLatticeDegree)];
-      for (int i = 0; i < 4; ++i) {
-        monomial_values3(degree_, kCorners[i], v);
-        int one = -1, count = 0;
-        bool others_zero = true;
-        const double* c = poly.coefficients(0);
-        for (size_t f = 0; f < poly.functions().size(); ++f, c += nm) {
-          double s = 0;
-          for (int m = 0; m < nm; ++m) s += c[m] * v[m];
-          if (std::fabs(s - 1) < 1e-9) {
-            one = poly.functions()[f] / nc;
-            ++count;
-          } else if (std::fabs(s) > 1e-9) {
-            others_zero = false;
-          }
-        }
-        corner_dof_[a][i] = count == 1 && others_zero ? one : -1;
-      }
-    }
-    add_field_monomials(*p.space, p.coef, poly, nm, solid.size(), monomial_coef_, static_cast<size_t>(a) * nm,
-                        3 * static_cast<size_t>(nm));
-    for (int k = 0; k < solid.size(); ++k)
-      if (!poly.shared(k)) corner_exact_[k] = 0;
-  }
-  for (int a = 0; a < 3; ++a)
-    for (int i = 0; i < 4; ++i)
-      if (corner_dof_[a][i] < 0) corner_exact_.assign(solid.size(), 0);
-}
-
-bool FieldMap3::coefficients(int k, double* cx, double* cy, double* cz) const {
-  if (monomial_coef_.empty()) return false;
-  const int nm = monomial_count3(degree_);
-  const double* c = &monomial_coef_[static_cast<size_t>(k) * 3 * nm];
-  std::copy(c, c + nm, cx);
-  std::copy(c + nm, c + 2 * nm, cy);
-  std::copy(c + 2 * nm, c + 3 * nm, cz);
-  return true;
-}
-
-bool FieldMap3::corners(int k, Point3* out) const {
-  if (corner_exact_.empty() || !corner_exact_[k]) return false;
-  thread_local std::vector<int> dofs;
-  double x[3][4];
-  for (int a = 0; a < 3; ++a) {
-    const Part& p = part_[a];
-    dofs.resize(p.space->local_dofs());
-    p.space->dofs(k, dofs.data());
-    for (int i = 0; i < 4; ++i) x[a][i] = p.coef[dofs[corner_dof_[a][i]]];
-  }
-  for (int i = 0; i < 4; ++i) out[i] = {x[0][i], x[1][i], x[2][i]};
-  return true;
-}
-
-MapValue3 FieldMap3::evaluate(int k, Point3 xi) const {
-  MapValue3 v{};
-  thread_local std::vector<double> out;
-  thread_local std::vector<int> dofs;
-  double* x[3] = {&v.x.x, &v.x.y, &v.x.z};
-  for (int a = 0; a < 3; ++a) {
-    const Part& p = part_[a];
-    const int nc = p.space->components();
-    out.resize(static_cast<size_t>(p.space->local_dofs()) * nc * 4);
-    dofs.resize(p.space->local_dofs());
-    p.space->evaluate(k, xi, out.data());
-    p.space->dofs(k, dofs.data());
-    double val = 0, g[3] = {0, 0, 0};
-    for (int df = p.first; df < p.last; ++df) {
-      const double c = p.coef[dofs[df]];
-      const double* f = &out[(df * nc + p.comp) * 4];
-      val += c * f[0];
-      for (int i = 0; i < 3; ++i) g[i] += c * f[1 + i];
-    }
-    *x[a] = val;
-    for (int i = 0; i < 3; ++i) v.jac[a][i] = g[i];
-  }
-  return v;
-}
 
 void MappedTet::polynomial(Point3 xi, Point3& x, Point3 d[3]) const {
   const int nm = monomial_count3(degree_);
@@ -257,7 +128,7 @@ void MappedTet::prepare(const Mesh3& solid_mesh, const SolidMap3& map, int kk) {
     nonlinearity = 0;
   } else {
     classify();
-    if (!affine) check_fold();
+    if (!affine) check_fold(*this);
   }
   if (affine) {
     // dX/ds = [image edges] [solid edges]^-1
@@ -314,56 +185,6 @@ void MappedTet::classify() {
       if (off > tol) planar = false;
     }
   for (Point3 xi : {Point3{0.25, 0.25, 0.25}, Point3{0.1, 0.2, 0.3}, Point3{0.5, 0.15, 0.2}}) deviation(xi);
-}
-
-DetSample MappedTet::jacobian_det(Point3 xi) const {
-  // d[i][a] = dX_a/dxi_i = sum_m c_a[m] f v_j, computed with an error <= (nm + degree + 1) eps A[i][a],
-  // A[i][a] = sum_m |c_a[m] f v_j| >= |d[i][a]|; the triple product then errs by at most
-  // ((1 + g)^3 - 1 + 4 eps) perm(A) with g that factor (perm: the permanent, the sum of the six
-  // products of the determinant without signs).
-  const int nm = monomial_count3(degree_);
-  double v[monomial_count3(kMaxDegree)];
-  monomial_values3(degree_, xi, v);
-  double d[3][3] = {}, a[3][3] = {};
-  const auto& derivative = monomial_derivatives3(degree_);
-  for (int m = 0; m < nm; ++m)
-    for (int i = 0; i < 3; ++i) {
-      const int j = derivative[m].index[i];
-      if (j < 0) continue;
-      const double dm = derivative[m].factor[i] * v[j];
-      for (int c = 0; c < 3; ++c) {
-        d[i][c] += c_[c][m] * dm;
-        a[i][c] += std::fabs(c_[c][m] * dm);
-      }
-    }
-  const double det = det3(d);
-  const double perm = a[0][0] * (a[1][1] * a[2][2] + a[1][2] * a[2][1]) + a[0][1] * (a[1][0] * a[2][2] + a[1][2] * a[2][0]) +
-                      a[0][2] * (a[1][0] * a[2][1] + a[1][1] * a[2][0]);
-  const double eps = std::numeric_limits<double>::epsilon();
-  return {det, 4 * (nm + degree_ + 3) * eps * perm};
-}
-
-void MappedTet::check_fold() const {
-  Point3 where;
-  JacobianSign sign = JacobianSign::Positive;
-  if (degree_ >= 1) {
-    sign = jacobian_sign3([this](Point3 xi) { return jacobian_det(xi); }, 3 * (degree_ - 1), kFoldDepth,
-                          kFoldTetrahedra, where);
-  } else {
-    // Not a polynomial: sampled on the degree-8 lattice (dX/dxi_i = dX/ds e_i has the sign of dX/ds).
-    for (int p = 0; p < monomial_count3(8) && sign == JacobianSign::Positive; ++p)
-      if (!(det3(map_->evaluate(k, lattice_point3(8, p)).jac) > 0)) {
-        where = lattice_point3(8, p);
-        sign = JacobianSign::Folds;
-      }
-  }
-  if (sign == JacobianSign::Positive) return;
-  char at[160];
-  std::snprintf(at, sizeof at, " at reference point (%.3g, %.3g, %.3g)", where.x, where.y, where.z);
-  if (sign == JacobianSign::Folds)
-    throw Error("the map folds " + name(k) + " (its jacobian determinant is not positive" + at + ")");
-  throw Error("the map nearly folds " + name(k) + " (its jacobian determinant comes within about 1e-6 of zero" + at +
-              ", or its certification needs more than " + std::to_string(kFoldTetrahedra) + " sub-tetrahedra)");
 }
 
 Point3 MappedTet::pull_back(Point3 y, Point3 xi, MapValue3& value) const {

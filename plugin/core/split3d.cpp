@@ -96,10 +96,10 @@ bool split_part3(const MappedTet& mt, const Point3 xi[4], const Point3 y[4], dou
       }
     }
     // red refinement: the four corner tetrahedra and the inner octahedron cut along the diagonal (0-2)-(1-3)
-    static const int kChildren[8][4][2] = {
-        {{0, 0}, {0, 1}, {0, 2}, {0, 3}}, {{0, 1}, {1, 1}, {1, 2}, {1, 3}}, {{0, 2}, {1, 2}, {2, 2}, {2, 3}},
-        {{0, 3}, {1, 3}, {2, 3}, {3, 3}}, {{0, 1}, {0, 2}, {0, 3}, {1, 3}}, {{0, 1}, {0, 2}, {1, 2}, {1, 3}},
-        {{0, 2}, {0, 3}, {1, 3}, {2, 3}}, {{0, 2}, {1, 2}, {1, 3}, {2, 3}}};
+    static const int kChildren[8][4][2] = {{{0, 0}, {0, 1}, {0, 2}, {0, 3}}, {{0, 1}, {1, 1}, {1, 2}, {1, 3}},
+                                           {{0, 2}, {1, 2}, {2, 2}, {2, 3}}, {{0, 3}, {1, 3}, {2, 3}, {3, 3}},
+                                           {{0, 1}, {0, 2}, {0, 3}, {1, 3}}, {{0, 1}, {0, 2}, {1, 2}, {1, 3}},
+                                           {{0, 2}, {0, 3}, {1, 3}, {2, 3}}, {{0, 2}, {1, 2}, {1, 3}, {2, 3}}};
     for (const auto& child : kChildren) {
       Node c;
       c.depth = node.depth + 1;

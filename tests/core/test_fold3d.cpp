@@ -11,6 +11,7 @@
 
 #include "coupling3d.hpp"
 #include "errors.hpp"
+#include "field_map3d.hpp"
 #include "fold3d.hpp"
 #include "rules.hpp"
 #include "support3d.hpp"
@@ -130,7 +131,6 @@ TEST(Fold3d, FoldInsideATetrahedronIsAnError) {
   EXPECT_EQ(report.curved, 1);
 }
 
-
 namespace {
 
 // The P2 interpolant on the reference tetrahedron of the identity with the midpoint of edge (0, 1) slid by t
@@ -185,9 +185,57 @@ TEST(Fold3d, P2MapsCloseToFoldingAreAccurate) {
     const double* c[3] = {coef[0].data(), coef[1].data(), coef[2].data()};
     const FieldMap3 map(solid, spaces, c, comp);
     const std::string e = coupling_error(fluid, solid, map, nullptr);
-    EXPECT_NE(e.find(t < 0.25 ? "the map nearly folds solid tetrahedron 0" : "the map folds solid tetrahedron 0 (its jacobian "
+    EXPECT_NE(e.find(t < 0.25 ? "the map nearly folds solid tetrahedron 0"
+                              : "the map folds solid tetrahedron 0 (its jacobian "
                                 "determinant is not positive at reference point (1, 0, 0))"),
               std::string::npos)
         << "t " << t << ": " << e;
+  }
+}
+
+TEST(Fold3d, AffineP2MapsGiveTheP1MatricesBitForBit) {
+  // A rotated, sheared affine map as a P1 and as a P2 field: the P2 one is recognised as affine, so its
+  // matrices are the P1 one's bit for bit (the corners and the constant jacobian come from the same dofs).
+  const Mesh3 solid = box_mesh(2, 2, 2, {0.3, 0.3, 0.3}, {0.4, 0.4, 0.4}, 0.2, 5);
+  const Mesh3 fluid = box_mesh(4, 4, 4, {0, 0, 0}, {1, 1, 1}, 0.2, 6);
+  double r[3][3];
+  rotation({1, 2, 3}, 0.7, r);
+  r[0][1] += 0.3;  // a shear
+  auto affine = [&](Point3 s) {
+    const Point3 d = s - Point3{0.5, 0.5, 0.5};
+    return Point3{0.5 + r[0][0] * d.x + r[0][1] * d.y + r[0][2] * d.z,
+                  0.5 + r[1][0] * d.x + r[1][1] * d.y + r[1][2] * d.z,
+                  0.5 + r[2][0] * d.x + r[2][1] * d.y + r[2][2] * d.z};
+  };
+  const P1Tet p1(solid), multiplier(solid), fluid_p1(fluid);
+  const P2Tet p2(solid), fluid_p2(fluid);
+  auto field = [&](const auto& space, std::vector<double> coef[3]) {
+    for (int a = 0; a < 3; ++a) coef[a].resize(space.dof_count());
+    for (int i = 0; i < space.dof_count(); ++i) {
+      const Point3 x = affine(space.node(i));
+      coef[0][i] = x.x;
+      coef[1][i] = x.y;
+      coef[2][i] = x.z;
+    }
+  };
+  std::vector<double> c1[3], c2[3];
+  field(p1, c1);
+  field(p2, c2);
+  const int comp[3] = {0, 0, 0};
+  const Basis3* s1[3] = {&p1, &p1, &p1};
+  const Basis3* s2[3] = {&p2, &p2, &p2};
+  const double* v1[3] = {c1[0].data(), c1[1].data(), c1[2].data()};
+  const double* v2[3] = {c2[0].data(), c2[1].data(), c2[2].data()};
+  const FieldMap3 map1(solid, s1, v1, comp), map2(solid, s2, v2, comp);
+  for (const Basis3* f : {static_cast<const Basis3*>(&fluid_p1), static_cast<const Basis3*>(&fluid_p2)}) {
+    CouplingReport3 report1, report2;
+    const CsrMatrix b1 = couple(fluid, *f, solid, multiplier, map1, 0.5, 2, &report1);
+    const CsrMatrix b2 = couple(fluid, *f, solid, multiplier, map2, 0.5, 2, &report2);
+    EXPECT_EQ(report2.affine, solid.size()) << report2.summary();
+    EXPECT_EQ(report2.split, 0);
+    ASSERT_EQ(b1.value.size(), b2.value.size());
+    EXPECT_EQ(b1.start, b2.start);
+    EXPECT_EQ(b1.column, b2.column);
+    for (size_t e = 0; e < b1.value.size(); ++e) ASSERT_EQ(b1.value[e], b2.value[e]) << e;
   }
 }
