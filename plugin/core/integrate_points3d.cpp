@@ -6,6 +6,7 @@
 #include "coupling3d.hpp"
 #include "errors.hpp"
 #include "predicates3d.hpp"
+#include "pull_back3d.hpp"
 #include "rules.hpp"
 
 namespace dlmfsi {
@@ -40,7 +41,7 @@ void PointIntegrator3::gather(const ClippedImage3& image, int kf, const Piece3& 
   Point3 xi_corner[Piece3::kMaxVertices];
   MapValue3 mv;
   for (int v = 0; v < piece.n; ++v)
-    xi_corner[v] = mt.affine ? mt.affine_reference(piece.v[v]) : mt.pull_back(piece.v[v], image.guess(piece.v[v]), mv);
+    xi_corner[v] = mt.affine ? mt.affine_reference(piece.v[v]) : pull_back(mt, piece.v[v], image.guess(piece.v[v]), mv);
   points_.clear();
   piece.for_each_tetrahedron_index([&](int i0, int i1, int i2, int i3) {
     const Point3 tet[4] = {piece.v[i0], piece.v[i1], piece.v[i2], piece.v[i3]};
@@ -52,7 +53,7 @@ void PointIntegrator3::gather(const ClippedImage3& image, int kf, const Piece3& 
       double det = mt.affine_det;
       std::array<double, 9> jac{};
       if (!mt.affine) {
-        xi = mt.pull_back(y, xi, mv);
+        xi = pull_back(mt, y, xi, mv);
         det = det3(mv.jac);
         if (!(det > 0)) throw Error("the map folds solid tetrahedron " + std::to_string(mt.k));
         for (int a = 0; a < 3; ++a)

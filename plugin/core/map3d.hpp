@@ -1,5 +1,5 @@
 // One solid tetrahedron under the map X (solid_map3d.hpp): its image's corners and shape, X as a polynomial
-// in its reference coordinates, the pull-back (the counterpart of map.hpp's MappedTriangle).
+// in its reference coordinates (the counterpart of map.hpp's MappedTriangle; the pull-back: pull_back3d.hpp).
 #pragma once
 #include "lattice3d.hpp"
 #include "mesh3d.hpp"
@@ -30,6 +30,8 @@ class MappedTet {
 
   // X and its jacobian (with respect to s) at reference point xi.
   MapValue3 at(Point3 xi) const;
+  // v.jac = dX/ds from the reference-coordinate derivatives d[i] = dX/dxi_i: dX/dxi (ds/dxi)^-1.
+  void set_jacobian(const Point3 d[3], MapValue3& v) const;
   // The degree of the polynomial fitted to X (1 to kMaxDegree), or -1 when X is evaluated itself.
   int fitted_degree() const { return degree_; }
   // The monomial coefficients (lattice3d.hpp order) of component a of the fitted polynomial.
@@ -47,16 +49,11 @@ class MappedTet {
             m[2][0] * d.x + m[2][1] * d.y + m[2][2] * d.z};
   }
 
-  // The reference point xi with X(xi) = y and the map there, by Newton's method from guess, stopping at
-  // |dxi| < 1e-12 or where the steps stall at the round-off floor. Throws Error if it fails to converge or
-  // the jacobian determinant is not positive (a folded map).
-  Point3 pull_back(Point3 y, Point3 guess, MapValue3& value) const;
 
  private:
   void classify();
   // value and reference-coordinate derivatives d[i] = dX/dxi_i of the fitted polynomial
   void polynomial(Point3 xi, Point3& x, Point3 d[3]) const;
-  void set_jacobian(const Point3 d[3], MapValue3& v) const;  // v.jac = dX/dxi (ds/dxi)^-1
   const SolidMap3* map_ = nullptr;
   int degree_ = -1;
   double c_[3][monomial_count3(kMaxDegree)];  // monomial coefficients of X, Y, Z

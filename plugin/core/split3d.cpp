@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "predicates3d.hpp"
+#include "pull_back3d.hpp"
 
 namespace dlmfsi {
 
@@ -92,7 +93,7 @@ bool split_part3(const MappedTet& mt, const Point3 xi[4], const Point3 y[4], dou
       mx[i][i] = p.xi[i];
       for (int j = i + 1; j < 4; ++j) {
         my[i][j] = my[j][i] = 0.5 * (p.y[i] + p.y[j]);
-        mx[i][j] = mx[j][i] = mt.pull_back(my[i][j], 0.5 * (p.xi[i] + p.xi[j]), value);
+        mx[i][j] = mx[j][i] = pull_back(mt, my[i][j], 0.5 * (p.xi[i] + p.xi[j]), value);
       }
     }
     // red refinement: the four corner tetrahedra and the inner octahedron cut along the diagonal (0-2)-(1-3)
