@@ -41,13 +41,6 @@ const std::vector<Tet>& reference_subdivision(int level) {
   return table[level];
 }
 
-// The sum of the piece's tetrahedra's volumes, each |volume6| / 6 (as the integrators sum them).
-double piece_volume(const Piece3& piece) {
-  double volume = 0;
-  piece.for_each_tetrahedron([&](Point3 o, Point3 p, Point3 q, Point3 r) { volume += std::fabs(volume6(o, p, q, r)) / 6; });
-  return volume;
-}
-
 }  // namespace
 
 ExactMethod3::ExactMethod3(const FluidSide3& fluid, FluidSearch3& search, int product_degree, int qforder,
@@ -137,9 +130,7 @@ double ExactMethod3::clip(const ClippedImage3& image, const Point3 img[4], Local
   search_.for_each_piece(img, hint_, [&](int kf, const Piece3& piece) {
     ++counts_.pieces;
     block.enter_fluid_element(fluid_.dofs(kf));
-    const double volume = piece_volume(piece);
-    integrator.integrate(image, kf, piece, block);
-    covered += volume;
+    covered += integrator.integrate(image, kf, piece, block);
   });
   return volume6(img[0], img[1], img[2], img[3]) / 6 - covered;
 }
