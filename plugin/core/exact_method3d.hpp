@@ -4,7 +4,9 @@
 // by a PieceIntegrator3: with a rule exact for the product's degree where X is affine on T, otherwise with
 // Newton's pull-back and a rule of degree qforder or, by default, one chosen from the map's nonlinearity.
 // Images whose faces are planar (P1b maps) are clipped whole; curved ones (P2 maps) are replaced by the
-// images of the 8^subdivide tetrahedra of the refined reference tetrahedron (default subdivide 2).
+// images of the 8^subdivide tetrahedra of the refined reference tetrahedron (default subdivide 2). A
+// straight image (or sub-tetrahedron) on which the map is far from affine, near a fold, is split in fluid
+// coordinates into nearly affine parts (split3d.hpp), each with the rule of its own nonlinearity.
 // The volume outside the fluid mesh is the image's volume less the pieces'.
 #pragma once
 #include <memory>
