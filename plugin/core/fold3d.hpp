@@ -6,9 +6,10 @@
 //   det = sum_m b_m B_m,  B_m = n! / (m0! m1! m2! m3!) l0^m0 l1^m1 l2^m2 l3^m3 >= 0,  sum_m B_m = 1,
 // (l the sub-tetrahedron's barycentric coordinates), its values there lie between the smallest and the
 // largest b_m. The b_m come from the values at the sub-tetrahedron's degree-n lattice, b = C^-1 v with
-// C[p][m] = B_m(lattice point p), so a computed b_m is within kappa * max_p e_p of the exact one, where
-// kappa = max_m sum_p |C^-1[m][p]| and e_p bounds the round-off of the value v_p. On each sub-tetrahedron:
-//  - every b_m > kappa * max_p e_p: det > 0 there (certified);
+// C[p][m] = B_m(lattice point p); the exact b_m are within kappa (max_p e_p + r) of the computed ones, where
+// kappa = max_m sum_p |C^-1[m][p]|, e_p bounds the round-off of the value v_p and r that of the computed
+// inverse (the residual max_p |v_p - (C b)_p| plus its own round-off; fold3d.cpp). On each sub-tetrahedron:
+//  - every computed b_m > 2 kappa (max_p e_p + r): det > 0 there (certified);
 //  - a value v_p <= 0 at a lattice point: the map folds or flattens there (the corners are lattice points);
 //  - otherwise split it into 8 (red refinement; the b_m converge to the values as h^2) and test the parts,
 //    down to max_depth levels and at most max_tetrahedra tested in all; what is left undecided has det
