@@ -74,12 +74,12 @@ double ExactMethod3::clip_or_split(const ClippedImage3& image, const Point3 xi[4
                                    LocalBlock& block) {
   const MappedTet& mt = image.tetrahedron;
   if (qforder_ >= 0 || nonlinearity_on(mt, xi, y) <= kSplitNonlinearity3) return clip(image, y, block);
-  if (!split_part3(mt, xi, y, kPartNonlinearity3, kMaxPartDepth3, kMaxParts3, parts_)) {
+  if (!split_part3(mt, xi, y, kSplitNonlinearity3, kMaxPartDepth3, kMaxParts3, parts_)) {
     char msg[300];
     std::snprintf(msg, sizeof msg,
                   "the map nearly folds solid tetrahedron %d: its nonlinearity stays above %.3g on parts of 2^-%d of "
                   "its size, or on more than %d parts",
-                  mt.k, kPartNonlinearity3, kMaxPartDepth3, kMaxParts3);
+                  mt.k, kSplitNonlinearity3, kMaxPartDepth3, kMaxParts3);
     throw Error(msg);
   }
   ++counts_.split;
@@ -97,24 +97,20 @@ double ExactMethod3::clip_or_split(const ClippedImage3& image, const Point3 xi[4
 // Where the map is not affine, the integrand in fluid coordinates, f(X^-1(y)) / det grad X, is smooth but
 // not polynomial; its error under a rule of degree p + q falls like (d/3)^q, d the map's nonlinearity (how
 // far grad X strays from the affine jacobian, map3d.hpp; measured on P1b maps, d = 0.05 to 0.4, where
-// q = 14 gives 1e-12 at d = 0.37). So q = 12 / -log10(d/3), at most 16, for an error about 1e-12 on planar
-// images; on curved images, whose error is the band between the curved boundary and the facets (1e-3 to
-// 1e-6), 1e-8 (qforder overrides).
+// q = 14 gives 1e-12 at d = 0.37). So q = 12 / -log10(d/3), at most 26 (d <= 1: images of larger d are split,
+// clip_or_split), for an error about 1e-12 on planar images (a bubble map of d = 0.9 / 0.99: 3e-13 / 2e-13
+// with q = 23 / 26, against 5e-11 / 1.6e-10 with 16); on curved images, whose error is the band between the
+// curved boundary and the facets (1e-3 to 1e-6), 1e-8 (qforder overrides).
 int ExactMethod3::rule_degree(const MappedTet& mt, double scale, bool curved) {
   if (mt.affine) return product_degree_;
   if (qforder_ >= 0) return qforder_;
-  const double d = std::max(scale * mt.nonlinearity, 1e-300) / 3;
-  const double digits = curved ? 8 : 12;
-  const int q = d >= 0.5 ? 16 : std::min(16, std::max(2, static_cast<int>(std::ceil(digits / -std::log10(d)))));
-  const int degree = std::min(40, product_degree_ + q);
-  counts_.curved_rule_degree = std::max(counts_.curved_rule_degree, degree);
-  return degree;
+  return part_rule_degree(scale * mt.nonlinearity, curved);
 }
 
 int ExactMethod3::part_rule_degree(double nonlinearity, bool curved) {
   const double d = std::max(nonlinearity, 1e-300) / 3;
   const double digits = curved ? 8 : 12;
-  const int q = std::min(16, std::max(2, static_cast<int>(std::ceil(digits / -std::log10(d)))));
+  const int q = d >= 0.5 ? kMaxQ3 : std::min(kMaxQ3, std::max(2, static_cast<int>(std::ceil(digits / -std::log10(d)))));
   const int degree = std::min(40, product_degree_ + q);
   counts_.curved_rule_degree = std::max(counts_.curved_rule_degree, degree);
   return degree;

@@ -39,13 +39,15 @@ class ExactMethod3 : public TetrahedronIntegrator {
   double clip_or_split(const ClippedImage3& image, const Point3 xi[4], const Point3 y[4], LocalBlock& block);
   // The rule for a part of nonlinearity d (rule_degree's formula with scale 1).
   int part_rule_degree(double nonlinearity, bool curved);
+  static constexpr int kMaxQ3 = 26;  // the highest automatic degree above the product's
 
-  // Images (or sub-tetrahedra) of nonlinearity_on above 1.5 are split into parts of nonlinearity <= 1, at
-  // most 20 levels down and 20000 parts per straight tetrahedron split. Measured on a P2 map whose edge
-  // midpoint slides by t towards a corner (the fold at t = 1/4; tests/core/test_fold3d.cpp): t = 0.1
-  // (nonlinearity 1.2) is right to 4e-15 with one rule of degree p + 16, t = 0.2 (2.4) only to 3e-9; its
-  // parts of nonlinearity <= 1 give 7e-15, and 2.7e-14 at t = 0.24 (4719 parts).
-  static constexpr double kSplitNonlinearity3 = 1.5, kPartNonlinearity3 = 1;
+  // Images (or sub-tetrahedra) of nonlinearity_on above 1 are split into parts of nonlinearity <= 1, at most
+  // 20 levels down and 20000 parts per straight tetrahedron split (rule_degree: up to p + 26 below 1).
+  // Measured on single tetrahedra (tests/core/test_fold3d.cpp), relative errors: a P1b-like bubble map of
+  // nonlinearity 0.6 / 0.9 / 1.5: 1.5e-13 / 2.8e-13 unsplit, 9.4e-14 split into 386 parts (3e-8 with one rule
+  // of p + 16); a P2 map with an edge midpoint slid by 0.1 / 0.2 (nonlinearity 1.2 / 2.4): 5e-14 / 9e-14 in
+  // 8 / 239 parts (4e-15 / 3e-9 with one rule of p + 16).
+  static constexpr double kSplitNonlinearity3 = 1;
   static constexpr int kMaxPartDepth3 = 20, kMaxParts3 = 20000;
   std::vector<MapPart3> parts_;
 

@@ -43,14 +43,38 @@ double nonlinearity_on(const MappedTet& mt, const Point3 xi[4], const Point3 y[4
     ai[1][b] = r[0].y * fi[0][b] + r[1].y * fi[1][b] + r[2].y * fi[2][b];
     ai[2][b] = r[0].z * fi[0][b] + r[1].z * fi[1][b] + r[2].z * fi[2][b];
   }
-  Point3 samples[11];
+  // The corners, edge midpoints, face centroids and centroid, and points off these symmetric ones (a bubble's
+  // gradient vanishes at all of those): barycentric (0.4, 0.2, 0.2, 0.2) and (0.1, 0.2, 0.3, 0.4) up to
+  // cyclic order, and (0.5, 0.25, 0.25, 0) on each face.
+  Point3 samples[27];
   int n = 0;
+  auto at = [&](double l0, double l1, double l2, double l3) {
+    samples[n++] = l0 * xi[0] + (l1 * xi[1] + (l2 * xi[2] + l3 * xi[3]));
+  };
   for (int i = 0; i < 4; ++i) samples[n++] = xi[i];
   for (int i = 0; i < 4; ++i)
     for (int j = i + 1; j < 4; ++j) samples[n++] = 0.5 * (xi[i] + xi[j]);
-  samples[n++] = 0.25 * (xi[0] + xi[1] + xi[2] + xi[3]);
+  const double third = 1.0 / 3;
+  at(0, third, third, third);
+  at(third, 0, third, third);
+  at(third, third, 0, third);
+  at(third, third, third, 0);
+  at(0.25, 0.25, 0.25, 0.25);
+  at(0.4, 0.2, 0.2, 0.2);
+  at(0.2, 0.4, 0.2, 0.2);
+  at(0.2, 0.2, 0.4, 0.2);
+  at(0.2, 0.2, 0.2, 0.4);
+  at(0.1, 0.2, 0.3, 0.4);
+  at(0.4, 0.1, 0.2, 0.3);
+  at(0.3, 0.4, 0.1, 0.2);
+  at(0.2, 0.3, 0.4, 0.1);
+  at(0, 0.5, 0.25, 0.25);
+  at(0.25, 0, 0.5, 0.25);
+  at(0.25, 0.25, 0, 0.5);
+  at(0.5, 0.25, 0.25, 0);
   double worst = 0;
-  for (const Point3& s : samples) {
+  for (int i = 0; i < n; ++i) {
+    const Point3 s = samples[i];
     Point3 x, d[3];
     mt.reference_derivatives(s, x, d);
     for (int a = 0; a < 3; ++a) {

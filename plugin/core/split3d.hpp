@@ -21,7 +21,7 @@ struct MapPart3 {
   double nonlinearity;  // of the map on the part (nonlinearity_on)
 };
 
-// max || A^-1 dX/dxi - I || (max row sum) at the corners, the edge midpoints and the centroid of the
+// max || A^-1 dX/dxi - I || (max row sum) at 27 points (split3d.cpp) of the
 // reference tetrahedron xi, A = [y_i - y_0] [xi_i - xi_0]^-1 the affine map from xi to y: how far the map
 // strays from the affine one on the part (MappedTet::nonlinearity for the whole tetrahedron). 1e300 when y
 // is flat or negatively oriented in floating point.
