@@ -19,11 +19,11 @@ namespace dlmfsi {
 std::string CouplingReport3::summary() const {
   char s[512];
   std::snprintf(s, sizeof s,
-                "dlmfsi: %ld solid tetrahedra (%ld affine, %ld planar, %ld curved), %ld pieces, %ld points, "
-                "degrees fluid %d multiplier %d rule %d/%d, image volume %.6g, outside %.3g, %.3f s "
-                "(setup %.3f, pieces %.3f, matrix %.3f)",
-                solid_tetrahedra, affine, planar, curved, pieces, points, fluid_degree, solid_degree, rule_degree,
-                curved_rule_degree, image_volume, outside_volume, seconds, setup_seconds, pieces_seconds,
+                "dlmfsi: %ld solid tetrahedra (%ld affine, %ld planar, %ld curved; %ld split into %ld parts), "
+                "%ld pieces, %ld points, degrees fluid %d multiplier %d rule %d/%d, image volume %.6g, outside %.3g, "
+                "%.3f s (setup %.3f, pieces %.3f, matrix %.3f)",
+                solid_tetrahedra, affine, planar, curved, split, parts, pieces, points, fluid_degree, solid_degree,
+                rule_degree, curved_rule_degree, image_volume, outside_volume, seconds, setup_seconds, pieces_seconds,
                 seconds - setup_seconds - pieces_seconds);
   return s;
 }
@@ -86,6 +86,8 @@ void add_counts(const CouplingReport3& r, CouplingReport3& total) {
   total.affine += r.affine;
   total.planar += r.planar;
   total.curved += r.curved;
+  total.split += r.split;
+  total.parts += r.parts;
   total.curved_rule_degree = std::max(total.curved_rule_degree, r.curved_rule_degree);
   total.image_volume += r.image_volume;
   total.outside_volume += r.outside_volume;

@@ -18,6 +18,7 @@ namespace dlmfsi {
 
 struct CouplingReport3 {
   long solid_tetrahedra = 0, pieces = 0, points = 0, affine = 0, planar = 0, curved = 0;
+  long split = 0, parts = 0;  // straight images (or sub-tetrahedra) split near a fold, and their parts
   double image_volume = 0, outside_volume = 0;  // of the mapped solid, and the part outside the fluid mesh
   int worst_tetrahedron = -1;                   // the solid tetrahedron with most volume outside
   double worst_outside = 0;

@@ -52,11 +52,11 @@ MomentIntegrator3::MomentIntegrator3(const Integrand3& integrand, CouplingReport
     : integrand_(integrand), counts_(counts), fluid_functions_(static_cast<int>(integrand.fluid.functions().size())),
       multiplier_functions_(static_cast<int>(integrand.multiplier.functions().size())) {}
 
-void MomentIntegrator3::integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) {
+double MomentIntegrator3::integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) {
   const MappedTet& mt = image.tetrahedron;
   const Moments mo = moments(piece);
   counts_.points += 1;
-  if (!(mo.volume > 0)) return;
+  if (!(mo.volume > 0)) return mo.volume;
   double fv[kMaxFunctions], fg[3 * kMaxFunctions], sv[kMaxFunctions], sg[3 * kMaxFunctions];
   integrand_.fluid.evaluate_affine(kf, integrand_.fluid.to_reference(kf, mo.centroid), fv, fg);
   integrand_.multiplier.evaluate_affine(mt.k, mt.affine_reference(mo.centroid), sv, sg);
@@ -95,6 +95,7 @@ void MomentIntegrator3::integrate(const ClippedImage3& image, int kf, const Piec
       }
     }
   }
+  return mo.volume;
 }
 
 }  // namespace dlmfsi

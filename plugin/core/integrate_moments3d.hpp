@@ -18,7 +18,7 @@ class MomentIntegrator3 : public PieceIntegrator3 {
   static bool applies(const Integrand3& integrand);
 
   MomentIntegrator3(const Integrand3& integrand, CouplingReport3& counts);
-  void integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) override;
+  double integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) override;
 
  private:
   const Integrand3& integrand_;

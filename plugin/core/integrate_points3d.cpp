@@ -6,6 +6,7 @@
 #include "coupling3d.hpp"
 #include "errors.hpp"
 #include "predicates3d.hpp"
+#include "pull_back3d.hpp"
 #include "rules.hpp"
 
 namespace dlmfsi {
@@ -14,9 +15,9 @@ PointIntegrator3::PointIntegrator3(const Integrand3& integrand, CouplingReport3&
     : integrand_(integrand), counts_(counts), fluid_functions_(static_cast<int>(integrand.fluid.functions().size())),
       gradients_(integrand.c1 != 0), listing_(integrand.c1 != 0 && !integrand.chain), values_(integrand) {}
 
-void PointIntegrator3::integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) {
+double PointIntegrator3::integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) {
   const MappedTet& mt = image.tetrahedron;
-  gather(mt, kf, piece, image.degree);
+  const double volume = gather(image, kf, piece);
   const int n = static_cast<int>(points_.size());
   counts_.points += n;
   eta_.resize(static_cast<size_t>(n));
@@ -32,18 +33,22 @@ void PointIntegrator3::integrate(const ClippedImage3& image, int kf, const Piece
   weigh(mt, n, twins ? integrand_.pairs.fluid_read_by_sources() : integrand_.pairs.fluid_read());
   add_pairs(n, twins, block);
   if (listing_) add_listing(mt, n, block);
+  return volume;
 }
 
-void PointIntegrator3::gather(const MappedTet& mt, int kf, const Piece3& piece, int degree) {
-  const auto& rule = tetrahedron_rule(degree);
+double PointIntegrator3::gather(const ClippedImage3& image, int kf, const Piece3& piece) {
+  const MappedTet& mt = image.tetrahedron;
+  const auto& rule = tetrahedron_rule(image.degree);
   Point3 xi_corner[Piece3::kMaxVertices];
   MapValue3 mv;
   for (int v = 0; v < piece.n; ++v)
-    xi_corner[v] = mt.affine ? mt.affine_reference(piece.v[v]) : mt.pull_back(piece.v[v], mt.affine_reference(piece.v[v]), mv);
+    xi_corner[v] = mt.affine ? mt.affine_reference(piece.v[v]) : pull_back(mt, piece.v[v], image.guess(piece.v[v]), mv);
   points_.clear();
+  double volume = 0;
   piece.for_each_tetrahedron_index([&](int i0, int i1, int i2, int i3) {
     const Point3 tet[4] = {piece.v[i0], piece.v[i1], piece.v[i2], piece.v[i3]};
     const double vol = std::fabs(volume6(tet[0], tet[1], tet[2], tet[3])) / 6;
+    volume += vol;
     const Point3 xt[4] = {xi_corner[i0], xi_corner[i1], xi_corner[i2], xi_corner[i3]};
     for (const RulePoint3& rp : rule) {
       const Point3 y = from_reference(tet, rp.xi);
@@ -51,7 +56,7 @@ void PointIntegrator3::gather(const MappedTet& mt, int kf, const Piece3& piece, 
       double det = mt.affine_det;
       std::array<double, 9> jac{};
       if (!mt.affine) {
-        xi = mt.pull_back(y, xi, mv);
+        xi = pull_back(mt, y, xi, mv);
         det = det3(mv.jac);
         if (!(det > 0)) throw Error("the map folds solid tetrahedron " + std::to_string(mt.k));
         for (int a = 0; a < 3; ++a)
@@ -60,6 +65,7 @@ void PointIntegrator3::gather(const MappedTet& mt, int kf, const Piece3& piece, 
       points_.push_back({integrand_.fluid.to_reference(kf, y), xi, vol * rp.weight / det, jac});
     }
   });
+  return volume;
 }
 
 void PointIntegrator3::weigh(const MappedTet& mt, int n, const std::vector<char>& read) {

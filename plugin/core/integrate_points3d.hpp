@@ -20,7 +20,7 @@ namespace dlmfsi {
 class PointIntegrator3 : public PieceIntegrator3 {
  public:
   PointIntegrator3(const Integrand3& integrand, CouplingReport3& counts);
-  void integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) override;
+  double integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) override;
 
  private:
   struct PointData {
@@ -28,8 +28,8 @@ class PointIntegrator3 : public PieceIntegrator3 {
     double weight;
     std::array<double, 9> jac;  // dX/ds where the map is not affine
   };
-  // The rule's points on the piece's tetrahedra, into points_.
-  void gather(const MappedTet& mt, int kf, const Piece3& piece, int degree);
+  // The rule's points on the piece's tetrahedra, into points_; returns the piece's volume.
+  double gather(const ClippedImage3& image, int kf, const Piece3& piece);
   // Folds the weights (and the chain rule's jacobian) into the fluid functions read.
   void weigh(const MappedTet& mt, int n, const std::vector<char>& read);
   void add_pairs(int n, bool twins, LocalBlock& block);

@@ -26,9 +26,23 @@ using Integrand3 = IntegrandOf<Basis3, PolynomialBasis3>;
 struct ClippedImage3 {
   const MappedTet& tetrahedron;
   int degree;  // of the rule on a piece: exact for the product where the map is affine
+  // For a sub-tetrahedron: its reference corners and their images, whose affine interpolant gives Newton's
+  // first guess (null for the whole image: MappedTet::affine_reference).
+  const Point3* sub_xi = nullptr;
+  const Point3* sub_y = nullptr;
+  // Newton's first guess for the reference point of y.
+  Point3 guess(Point3 y) const;
 };
 
-using PieceIntegrator3 = PieceIntegratorOf<ClippedImage3, Piece3>;
+// Adds the integrand over one piece (image ∩ fluid tetrahedron kf) to the block (the caller has entered kf
+// in the block) and returns the piece's volume as the integrator sums it: |volume6| / 6 of each of the
+// piece's tetrahedra, in Piece3::for_each_tetrahedron's order (so the image's volume outside the fluid is
+// found without a second pass over the piece).
+class PieceIntegrator3 {
+ public:
+  virtual ~PieceIntegrator3() = default;
+  virtual double integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) = 0;
+};
 using TetrahedronIntegrator = ElementIntegratorOf<MappedTet>;
 
 // The exact method (the only one in 3D) with, for every piece, the point-by-point integrator, and for the

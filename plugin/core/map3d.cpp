@@ -2,12 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 #include <string>
 #include <vector>
 
 #include "errors.hpp"
-#include "polynomial_fit.hpp"
+#include "map_fold3d.hpp"
 #include "predicates3d.hpp"
 
 namespace dlmfsi {
@@ -32,132 +31,6 @@ void inverse_of_columns(Point3 e1, Point3 e2, Point3 e3, double inv[3][3]) {
 const Point3 kCorners[4] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
 
 }  // namespace
-
-int FieldMap3::fit_degree(const Basis3* const space[3], const int comp[3]) {
-  int degree = 0;
-  for (int a = 0; a < 3; ++a) {
-    if (comp[a] < 0 || comp[a] >= space[a]->components()) throw Error("map component out of range");
-    const int d = polynomial_degree(*space[a], {comp[a]});
-    if (d < 0) return -1;
-    degree = std::max(degree, d);
-  }
-  return degree < 1 || degree > MappedTet::kMaxDegree ? -1 : degree;
-}
-
-FieldMap3::FieldMap3(const Mesh3& solid, const Basis3* const space[3], const double* const coef[3], const int comp[3],
-                     const PolynomialBasis3* const fit[3]) {
-  for (int a = 0; a < 3; ++a) {
-    part_[a] = {space[a], coef[a], comp[a], 0, 0};
-    space[a]->component_dofs(comp[a], part_[a].first, part_[a].last);
-    for (int i = 0; i < 4; ++i) corner_dof_[a][i] = -1;
-  }
-  degree_ = fit_degree(space, comp);
-  if (degree_ < 0) return;  // not polynomial (or constant): evaluate the map itself
-  const int nm = monomial_count3(degree_);
-  monomial_coef_.assign(static_cast<size_t>(solid.size()) * 3 * nm, 0.0);
-  corner_exact_.assign(solid.size(), 1);
-  std::unique_ptr<PolynomialBasis3> own[3];
-  const PolynomialBasis3* used[3] = {nullptr, nullptr, nullptr};
-  for (int a = 0; a < 3; ++a) {
-    const Part& p = part_[a];
-    if (fit && fit[a] && fit[a]->degree() == degree_) {
-      used[a] = fit[a];
-    } else {
-      // X, Y and Z are often the same space and component (functions of one scalar space): one fit.
-      for (int b = 0; b < a && !used[a]; ++b)
-        if (part_[b].space == p.space && part_[b].comp == p.comp) used[a] = used[b];
-      if (!used[a]) {
-        own[a] = std::make_unique<PolynomialBasis3>(*p.space, solid, degree_, std::vector<int>{p.comp});
-        used[a] = own[a].get();
-      }
-    }
-    const PolynomialBasis3& poly = *used[a];
-    if (!poly.fitted()) {
-      degree_ = -1;
-      monomial_coef_.clear();
-      corner_exact_.clear();
-      return;
-    }
-    const int nc = p.space->components();
-    // The Lagrange dof at each corner, from the shared fit's values there (1 for it, 0 for the others).
-    if (solid.size() > 0) {
-      double v[monomial_count3(kMaxLatticeDegree)];
-      for (int i = 0; i < 4; ++i) {
-        monomial_values3(degree_, kCorners[i], v);
-        int one = -1, count = 0;
-        bool others_zero = true;
-        const double* c = poly.coefficients(0);
-        for (size_t f = 0; f < poly.functions().size(); ++f, c += nm) {
-          double s = 0;
-          for (int m = 0; m < nm; ++m) s += c[m] * v[m];
-          if (std::fabs(s - 1) < 1e-9) {
-            one = poly.functions()[f] / nc;
-            ++count;
-          } else if (std::fabs(s) > 1e-9) {
-            others_zero = false;
-          }
-        }
-        corner_dof_[a][i] = count == 1 && others_zero ? one : -1;
-      }
-    }
-    add_field_monomials(*p.space, p.coef, poly, nm, solid.size(), monomial_coef_, static_cast<size_t>(a) * nm,
-                        3 * static_cast<size_t>(nm));
-    for (int k = 0; k < solid.size(); ++k)
-      if (!poly.shared(k)) corner_exact_[k] = 0;
-  }
-  for (int a = 0; a < 3; ++a)
-    for (int i = 0; i < 4; ++i)
-      if (corner_dof_[a][i] < 0) corner_exact_.assign(solid.size(), 0);
-}
-
-bool FieldMap3::coefficients(int k, double* cx, double* cy, double* cz) const {
-  if (monomial_coef_.empty()) return false;
-  const int nm = monomial_count3(degree_);
-  const double* c = &monomial_coef_[static_cast<size_t>(k) * 3 * nm];
-  std::copy(c, c + nm, cx);
-  std::copy(c + nm, c + 2 * nm, cy);
-  std::copy(c + 2 * nm, c + 3 * nm, cz);
-  return true;
-}
-
-bool FieldMap3::corners(int k, Point3* out) const {
-  if (corner_exact_.empty() || !corner_exact_[k]) return false;
-  thread_local std::vector<int> dofs;
-  double x[3][4];
-  for (int a = 0; a < 3; ++a) {
-    const Part& p = part_[a];
-    dofs.resize(p.space->local_dofs());
-    p.space->dofs(k, dofs.data());
-    for (int i = 0; i < 4; ++i) x[a][i] = p.coef[dofs[corner_dof_[a][i]]];
-  }
-  for (int i = 0; i < 4; ++i) out[i] = {x[0][i], x[1][i], x[2][i]};
-  return true;
-}
-
-MapValue3 FieldMap3::evaluate(int k, Point3 xi) const {
-  MapValue3 v{};
-  thread_local std::vector<double> out;
-  thread_local std::vector<int> dofs;
-  double* x[3] = {&v.x.x, &v.x.y, &v.x.z};
-  for (int a = 0; a < 3; ++a) {
-    const Part& p = part_[a];
-    const int nc = p.space->components();
-    out.resize(static_cast<size_t>(p.space->local_dofs()) * nc * 4);
-    dofs.resize(p.space->local_dofs());
-    p.space->evaluate(k, xi, out.data());
-    p.space->dofs(k, dofs.data());
-    double val = 0, g[3] = {0, 0, 0};
-    for (int df = p.first; df < p.last; ++df) {
-      const double c = p.coef[dofs[df]];
-      const double* f = &out[(df * nc + p.comp) * 4];
-      val += c * f[0];
-      for (int i = 0; i < 3; ++i) g[i] += c * f[1 + i];
-    }
-    *x[a] = val;
-    for (int i = 0; i < 3; ++i) v.jac[a][i] = g[i];
-  }
-  return v;
-}
 
 void MappedTet::polynomial(Point3 xi, Point3& x, Point3 d[3]) const {
   const int nm = monomial_count3(degree_);
@@ -184,6 +57,21 @@ void MappedTet::set_jacobian(const Point3 d[3], MapValue3& v) const {
   const double dx[3][3] = {{d[0].x, d[1].x, d[2].x}, {d[0].y, d[1].y, d[2].y}, {d[0].z, d[1].z, d[2].z}};
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b) v.jac[a][b] = dx[a][0] * inv_[0][b] + dx[a][1] * inv_[1][b] + dx[a][2] * inv_[2][b];
+}
+
+void MappedTet::reference_derivatives(Point3 xi, Point3& x, Point3 d[3]) const {
+  if (degree_ >= 1) {
+    polynomial(xi, x, d);
+    return;
+  }
+  // dX/dxi_i = dX/ds e_i
+  const MapValue3 v = map_->evaluate(k, xi);
+  x = v.x;
+  const Point3 e[3] = {solid[1] - solid[0], solid[2] - solid[0], solid[3] - solid[0]};
+  for (int i = 0; i < 3; ++i)
+    d[i] = {v.jac[0][0] * e[i].x + v.jac[0][1] * e[i].y + v.jac[0][2] * e[i].z,
+            v.jac[1][0] * e[i].x + v.jac[1][1] * e[i].y + v.jac[1][2] * e[i].z,
+            v.jac[2][0] * e[i].x + v.jac[2][1] * e[i].y + v.jac[2][2] * e[i].z};
 }
 
 MapValue3 MappedTet::at(Point3 xi) const {
@@ -240,6 +128,7 @@ void MappedTet::prepare(const Mesh3& solid_mesh, const SolidMap3& map, int kk) {
     nonlinearity = 0;
   } else {
     classify();
+    if (!affine) check_fold(*this);
   }
   if (affine) {
     // dX/ds = [image edges] [solid edges]^-1
@@ -268,17 +157,7 @@ void MappedTet::classify() {
   nonlinearity = 0;
   auto deviation = [&](Point3 xi) {
     Point3 x, d[3];
-    if (degree_ >= 1) {
-      polynomial(xi, x, d);
-    } else {  // dX/dxi_i = dX/ds e_i
-      const MapValue3 v = map_->evaluate(k, xi);
-      x = v.x;
-      const Point3 e[3] = {solid[1] - solid[0], solid[2] - solid[0], solid[3] - solid[0]};
-      for (int i = 0; i < 3; ++i)
-        d[i] = {v.jac[0][0] * e[i].x + v.jac[0][1] * e[i].y + v.jac[0][2] * e[i].z,
-                v.jac[1][0] * e[i].x + v.jac[1][1] * e[i].y + v.jac[1][2] * e[i].z,
-                v.jac[2][0] * e[i].x + v.jac[2][1] * e[i].y + v.jac[2][2] * e[i].z};
-    }
+    reference_derivatives(xi, x, d);
     if (!finite(x)) throw Error("the map is NaN or Inf inside " + name(k));
     const Point3 line = from_reference(image, xi);
     const double dev = std::fabs(x.x - line.x) + std::fabs(x.y - line.y) + std::fabs(x.z - line.z);
@@ -306,58 +185,6 @@ void MappedTet::classify() {
       if (off > tol) planar = false;
     }
   for (Point3 xi : {Point3{0.25, 0.25, 0.25}, Point3{0.1, 0.2, 0.3}, Point3{0.5, 0.15, 0.2}}) deviation(xi);
-}
-
-Point3 MappedTet::pull_back(Point3 y, Point3 xi, MapValue3& value) const {
-  if (affine) {
-    value = affine_value;
-    value.x = y;
-    return affine_reference(y);
-  }
-  // Newton on X(xi) = y with dX/dxi = [d1 d2 d3]; its determinant has the sign of det dX/ds.
-  const bool fitted = degree_ >= 1;
-  const Point3 e[3] = {solid[1] - solid[0], solid[2] - solid[0], solid[3] - solid[0]};
-  auto evaluate = [&](Point3 at_xi, Point3& x, Point3 d[3]) {
-    if (fitted) {
-      polynomial(at_xi, x, d);
-      return;
-    }
-    value = map_->evaluate(k, at_xi);
-    x = value.x;
-    for (int i = 0; i < 3; ++i)  // dX/dxi_i = dX/ds e_i
-      d[i] = {value.jac[0][0] * e[i].x + value.jac[0][1] * e[i].y + value.jac[0][2] * e[i].z,
-              value.jac[1][0] * e[i].x + value.jac[1][1] * e[i].y + value.jac[1][2] * e[i].z,
-              value.jac[2][0] * e[i].x + value.jac[2][1] * e[i].y + value.jac[2][2] * e[i].z};
-  };
-  auto finish = [&](Point3 x, const Point3 d[3]) {
-    if (!fitted) return;  // value already holds X and dX/ds there
-    value.x = x;
-    set_jacobian(d, value);
-  };
-  double previous = 1e300;
-  for (int it = 0; it < 40; ++it) {
-    Point3 x, d[3];
-    evaluate(xi, x, d);
-    const double det = dot(d[0], cross(d[1], d[2]));
-    if (!(det > 0)) throw Error("the map folds " + name(k) + " (jacobian determinant " + std::to_string(det) + ")");
-    const Point3 r = y - x;
-    // Cramer: step = [d1 d2 d3]^-1 r
-    const Point3 step{dot(r, cross(d[1], d[2])) / det, dot(d[0], cross(r, d[2])) / det, dot(d[0], cross(d[1], r)) / det};
-    xi = xi + step;
-    const double size = std::fabs(step.x) + std::fabs(step.y) + std::fabs(step.z);
-    if (size < 1e-12) {
-      finish(x, d);
-      return xi;
-    }
-    // Stalled at the round-off floor (quadratic convergence would have halved the step).
-    if (size < 1e-9 && size > 0.5 * previous) {
-      evaluate(xi, x, d);
-      finish(x, d);
-      return xi;
-    }
-    previous = size;
-  }
-  throw Error("Newton's method did not converge pulling a point back into " + name(k));
 }
 
 }  // namespace dlmfsi

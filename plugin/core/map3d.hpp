@@ -1,77 +1,18 @@
-// The map X that places a 3D solid: values, derivatives, shape of each mapped tetrahedron, pull-back
-// (the counterpart of map.hpp).
+// One solid tetrahedron under the map X (solid_map3d.hpp): its image's corners and shape, X as a polynomial
+// in its reference coordinates (the counterpart of map.hpp's MappedTriangle; the pull-back: pull_back3d.hpp).
 #pragma once
-#include <vector>
-
-#include "basis.hpp"
 #include "lattice3d.hpp"
 #include "mesh3d.hpp"
-#include "polynomial_basis3d.hpp"
+#include "solid_map3d.hpp"
 
 namespace dlmfsi {
-
-struct MapValue3 {
-  Point3 x;           // X(s)
-  double jac[3][3];   // jac[a][b] = dX_a / ds_b, derivatives in the solid's reference coordinates s
-};
-
-inline double det3(const double j[3][3]) {
-  return j[0][0] * (j[1][1] * j[2][2] - j[1][2] * j[2][1]) - j[0][1] * (j[1][0] * j[2][2] - j[1][2] * j[2][0]) +
-         j[0][2] * (j[1][0] * j[2][1] - j[1][1] * j[2][0]);
-}
-
-class SolidMap3 {
- public:
-  virtual ~SolidMap3() = default;
-  // X at reference point xi of solid tetrahedron k. Must be safe to call from several threads at once.
-  virtual MapValue3 evaluate(int k, Point3 xi) const = 0;
-  // The polynomial degree of X on each tetrahedron (1 to 6), or -1 when unknown or not polynomial.
-  virtual int degree() const { return -1; }
-  // The monomial coefficients (lattice3d.hpp order, degree()) of X, Y and Z on tetrahedron k in the
-  // reference coordinates, or false to let the caller fit them from evaluate().
-  virtual bool coefficients(int, double*, double*, double*) const { return false; }
-  // X at the four corners of tetrahedron k, exactly as the map's own values there (so that tetrahedra
-  // sharing a vertex agree on its image bit for bit), or false to let the caller evaluate them.
-  virtual bool corners(int, Point3*) const { return false; }
-};
-
-// X = (sum_i x_i phi_i^cx, sum_i y_i phi_i^cy, sum_i z_i phi_i^cz): components of finite element functions
-// on the solid mesh (three scalar functions, or components of one vector function). For polynomial
-// spaces the monomial coefficients of X on every tetrahedron are computed once, here, from the spaces' fits
-// (given in fit[] when the caller keeps them across calls, otherwise fitted here).
-class FieldMap3 : public SolidMap3 {
- public:
-  FieldMap3(const Mesh3& solid, const Basis3* const space[3], const double* const coef[3], const int comp[3],
-            const PolynomialBasis3* const fit[3] = nullptr);
-  // The degree the map is fitted to: the highest polynomial degree of the three components, or -1 when one
-  // is not polynomial or the degree lies outside 1..6. Throws Error for a component out of range.
-  static int fit_degree(const Basis3* const space[3], const int comp[3]);
-  MapValue3 evaluate(int k, Point3 xi) const override;
-  int degree() const override { return degree_; }
-  bool coefficients(int k, double* cx, double* cy, double* cz) const override;
-  bool corners(int k, Point3* out) const override;
-
- private:
-  struct Part {
-    const Basis3* space;
-    const double* coef;
-    int comp, first, last;
-  };
-  Part part_[3];
-  int degree_ = -1;
-  std::vector<double> monomial_coef_;  // per tetrahedron: x, y then z coefficients
-  // Per part and corner of the reference tetrahedron: the local dof whose basis function is 1 there while
-  // the part's others are 0 (a Lagrange dof at the vertex), or -1; valid on tetrahedra of the shared fit.
-  int corner_dof_[3][4];
-  std::vector<char> corner_exact_;  // per tetrahedron: every part uses the shared fit and has corner dofs
-};
 
 // One solid tetrahedron k under the map: the images of its corners and how its image may be handled.
 // When the map's degree is known, X is fitted on the tetrahedron's lattice (exact for a polynomial map)
 // and evaluated as a polynomial in the reference coordinates.
 class MappedTet {
  public:
-  static constexpr int kMaxDegree = 6;
+  static constexpr int kMaxDegree = kMaxMapDegree3;
   int k = -1;
   Point3 solid[4];   // corners in the reference configuration
   Point3 image[4];   // X at the corners
@@ -89,6 +30,15 @@ class MappedTet {
 
   // X and its jacobian (with respect to s) at reference point xi.
   MapValue3 at(Point3 xi) const;
+  // v.jac = dX/ds from the reference-coordinate derivatives d[i] = dX/dxi_i: dX/dxi (ds/dxi)^-1.
+  void set_jacobian(const Point3 d[3], MapValue3& v) const;
+  // The degree of the polynomial fitted to X (1 to kMaxDegree), or -1 when X is evaluated itself.
+  int fitted_degree() const { return degree_; }
+  // The monomial coefficients (lattice3d.hpp order) of component a of the fitted polynomial.
+  const double* coefficients(int a) const { return c_[a]; }
+  // X and its reference-coordinate derivatives d[i] = dX/dxi_i at xi (of the fitted polynomial, or of the
+  // map itself when its degree is unknown).
+  void reference_derivatives(Point3 xi, Point3& x, Point3 d[3]) const;
 
   // The reference point of y under the affine interpolant of the corner images (for affine tetrahedra,
   // the pull-back itself).
@@ -99,16 +49,11 @@ class MappedTet {
             m[2][0] * d.x + m[2][1] * d.y + m[2][2] * d.z};
   }
 
-  // The reference point xi with X(xi) = y and the map there, by Newton's method from guess, stopping at
-  // |dxi| < 1e-12 or where the steps stall at the round-off floor. Throws Error if it fails to converge or
-  // the jacobian determinant is not positive (a folded map).
-  Point3 pull_back(Point3 y, Point3 guess, MapValue3& value) const;
 
  private:
   void classify();
   // value and reference-coordinate derivatives d[i] = dX/dxi_i of the fitted polynomial
   void polynomial(Point3 xi, Point3& x, Point3 d[3]) const;
-  void set_jacobian(const Point3 d[3], MapValue3& v) const;  // v.jac = dX/dxi (ds/dxi)^-1
   const SolidMap3* map_ = nullptr;
   int degree_ = -1;
   double c_[3][monomial_count3(kMaxDegree)];  // monomial coefficients of X, Y, Z

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "polynomial_fit.hpp"
+#include "polynomial_values3d.hpp"
 
 namespace dlmfsi {
 
@@ -14,27 +15,12 @@ constexpr Point3 kCheckPoint{0.2113248654, 0.3141592654, 0.1732050808};
 
 PolynomialBasis3::PolynomialBasis3(const Basis3& basis, const Mesh3& mesh, int degree, const std::vector<int>& components)
     : basis_(basis),
-      mesh_(mesh),
+      frames_(mesh),
       degree_(degree > kMaxLatticeDegree ? -1 : degree),
       nc_(basis.components()),
       functions_(listed_functions(basis, components)) {
   sample_.resize(static_cast<size_t>(basis.local_dofs()) * nc_ * 4);
   check_.resize(sample_.size());
-  inverse_jacobian_.resize(9 * static_cast<size_t>(mesh.size()));
-  for (int k = 0; k < mesh.size(); ++k) {
-    // x = p0 + E xi with E = [e1 e2 e3]: E^-1 has rows (e2 x e3, e3 x e1, e1 x e2) / det E
-    Point3 p[4];
-    mesh.corners(k, p);
-    const Point3 e1 = p[1] - p[0], e2 = p[2] - p[0], e3 = p[3] - p[0];
-    const double det = dot(e1, cross(e2, e3));
-    const Point3 rows[3] = {cross(e2, e3), cross(e3, e1), cross(e1, e2)};
-    double* j = &inverse_jacobian_[9 * static_cast<size_t>(k)];
-    for (int r = 0; r < 3; ++r) {
-      j[3 * r] = rows[r].x / det;
-      j[3 * r + 1] = rows[r].y / det;
-      j[3 * r + 2] = rows[r].z / det;
-    }
-  }
   if (degree_ < 0 || mesh.size() == 0) {
     degree_ = -1;
     return;
@@ -71,61 +57,9 @@ void PolynomialBasis3::check(int k) {
 }
 
 void PolynomialBasis3::evaluate_points(int k, const Point3* xi, int n, double* value, double* gradient) const {
-  const int nm = nm_;
-  const size_t width = functions_.size();
-  const double* coef = coefficients(k);
-  const double* j = inverse_jacobian(k);
-  const auto& derivative = monomial_derivatives3(degree_);
-  const int nm1 = degree_ > 0 ? monomial_count3(degree_ - 1) : 0;
-  // Monomial-major: mono[m * n + p] is monomial m at point p, so that each function's sums run along the
-  // points.
-  thread_local std::vector<double> scratch, ref;
-  if (scratch.size() < static_cast<size_t>(nm) * n) scratch.resize(static_cast<size_t>(nm) * n);
-  double* mono = scratch.data();
-  for (int p = 0; p < n; ++p) {
-    double v[monomial_count3(kMaxLatticeDegree)];
-    monomial_values3(degree_, xi[p], v);
-    for (int m = 0; m < nm; ++m) mono[static_cast<size_t>(m) * n + p] = v[m];
-  }
-  if (gradient && ref.size() < 3 * static_cast<size_t>(nm1 > 0 ? nm1 : 1)) ref.resize(3 * static_cast<size_t>(nm1 > 0 ? nm1 : 1));
   const bool twins = shared(k) && !twin_.empty();
-  for (size_t f = 0; f < width; ++f) {
-    if (twins && twin_[f] >= 0) continue;  // copied below
-    const double* c = coef + f * nm;
-    double* out = value + f * n;
-    for (int p = 0; p < n; ++p) out[p] = c[0];  // monomial 0 is 1
-    for (int m = 1; m < nm; ++m) {
-      const double cm = c[m];
-      const double* row = mono + static_cast<size_t>(m) * n;
-      for (int p = 0; p < n; ++p) out[p] += cm * row[p];
-    }
-    if (!gradient) continue;
-    // the reference derivatives' coefficients on the degree - 1 monomials
-    double* e = ref.data();
-    std::fill(e, e + 3 * nm1, 0.0);
-    for (int m = 1; m < nm; ++m)
-      for (int i = 0; i < 3; ++i)
-        if (derivative[m].index[i] >= 0) e[i * nm1 + derivative[m].index[i]] += derivative[m].factor[i] * c[m];
-    double* g[3] = {gradient + (3 * f) * n, gradient + (3 * f + 1) * n, gradient + (3 * f + 2) * n};
-    for (int p = 0; p < n; ++p) {
-      double r[3] = {0, 0, 0};
-      for (int m = 0; m < nm1; ++m) {
-        const double mp = mono[static_cast<size_t>(m) * n + p];
-        r[0] += e[m] * mp;
-        r[1] += e[nm1 + m] * mp;
-        r[2] += e[2 * nm1 + m] * mp;
-      }
-      // d phi / d x_j = sum_i d phi / d xi_i  d xi_i / d x_j
-      for (int a = 0; a < 3; ++a) g[a][p] = r[0] * j[a] + r[1] * j[3 + a] + r[2] * j[6 + a];
-    }
-  }
-  if (!twins) return;
-  for (size_t f = 0; f < width; ++f) {
-    const int t = twin_[f];
-    if (t < 0) continue;
-    std::copy(value + t * n, value + (t + 1) * n, value + f * n);
-    if (gradient) std::copy(gradient + 3 * t * n, gradient + 3 * (t + 1) * n, gradient + 3 * f * n);
-  }
+  evaluate_polynomials3(degree_, coefficients(k), functions_.size(), twins ? twin_.data() : nullptr,
+                        inverse_jacobian(k), xi, n, value, gradient);
 }
 
 void PolynomialBasis3::evaluate(int k, Point3 xi, double* out) const {

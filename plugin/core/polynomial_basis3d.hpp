@@ -10,6 +10,7 @@
 #include "basis.hpp"
 #include "lattice3d.hpp"
 #include "mesh3d.hpp"
+#include "tet_frames3d.hpp"
 
 namespace dlmfsi {
 
@@ -38,13 +39,9 @@ class PolynomialBasis3 {
   void evaluate_affine(int k, Point3 xi, double* value, double* gradient) const;
 
   // The reference coordinates of x in element k (the inverse of the element's affine map).
-  Point3 to_reference(int k, Point3 x) const {
-    const double* j = &inverse_jacobian_[9 * static_cast<size_t>(k)];
-    const Point3 d = x - mesh_.vertex(k, 0);
-    return {j[0] * d.x + j[1] * d.y + j[2] * d.z, j[3] * d.x + j[4] * d.y + j[5] * d.z, j[6] * d.x + j[7] * d.y + j[8] * d.z};
-  }
+  Point3 to_reference(int k, Point3 x) const { return frames_.to_reference(k, x); }
   // d xi_i / d x_j of element k, row-major.
-  const double* inverse_jacobian(int k) const { return &inverse_jacobian_[9 * static_cast<size_t>(k)]; }
+  const double* inverse_jacobian(int k) const { return frames_.inverse_jacobian(k); }
   // Does element k use the shared fit (that of element 0)?
   bool shared(int k) const { return slot_[k] < 0; }
   // On elements of the shared fit, function f equals function twin(f) (an earlier one, with the same
@@ -57,14 +54,13 @@ class PolynomialBasis3 {
   void fit(int k, double* coefficients);
   void check(int k);
   const Basis3& basis_;
-  const Mesh3& mesh_;
+  TetFrames3 frames_;
   int degree_, nm_ = 0, nc_;
   std::vector<int> functions_;
   std::vector<double> reference_;  // the shared fit
   std::vector<int> twin_;          // per function: an earlier function with the same shared fit, or -1
   std::vector<int> slot_;          // per element: -1 shared fit, else offset in own_
   std::vector<double> own_;        // element fits that differ from the shared one
-  std::vector<double> inverse_jacobian_;  // per element: d xi / d x, 9 entries
   std::vector<double> sample_, check_;
 };
 

@@ -15,6 +15,7 @@
 
 #include "adapter.hpp"
 #include "coupling3d.hpp"
+#include "field_map3d.hpp"
 #include "coupling_args.hpp"
 #include "errors.hpp"
 #include "side_cache.hpp"

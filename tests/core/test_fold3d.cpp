@@ -1,0 +1,341 @@
+// The fold certification of curved 3D maps (fold3d.hpp) against maps whose jacobian determinant is known in
+// closed form: a P2 map that folds inside a tetrahedron while its determinant is positive at the corners and
+// at the points the assembly samples is an error; P2 maps close to folding but valid give 1'B1 = the solid's
+// volume and int u(X(s)) ds against the polynomial integrated exactly; affine maps are never certified.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "coupling3d.hpp"
+#include "errors.hpp"
+#include "field_map3d.hpp"
+#include "fold3d.hpp"
+#include "rules.hpp"
+#include "support3d.hpp"
+
+using namespace dlmfsi;
+using namespace dlmfsi::test3d;
+
+namespace {
+
+// X(s) and dX/ds from a formula in the solid's coordinates, a polynomial of the given degree.
+using Formula = std::function<void(Point3 s, Point3& x, double jac[3][3])>;
+class FormulaMap3 : public SolidMap3 {
+ public:
+  FormulaMap3(const Mesh3& solid, Formula f, int degree) : solid_(solid), f_(std::move(f)), degree_(degree) {}
+  MapValue3 evaluate(int k, Point3 xi) const override {
+    Point3 p[4];
+    solid_.corners(k, p);
+    MapValue3 v;
+    f_(from_reference(p, xi), v.x, v.jac);
+    return v;
+  }
+  int degree() const override { return degree_; }
+
+ private:
+  const Mesh3& solid_;
+  Formula f_;
+  int degree_;
+};
+
+// det = u^2 + v^2 - gamma v, u = 1 + a (y - y0), v = a (x - x0): negative exactly in the cylinder about the
+// axis x = x0 + gamma / (2a), y = y0 - 1 / a of radius |gamma / (2a)|, parallel to z.
+//   X = (x + a (x - x0)(y - y0), y + gamma x - a/2 (x - x0)^2 + a/2 (y - y0)^2, z)
+struct Cylinder {
+  double a, x0, y0, gamma;
+  void operator()(Point3 s, Point3& x, double j[3][3]) const {
+    const double dx = s.x - x0, dy = s.y - y0;
+    x = {s.x + a * dx * dy, s.y + gamma * s.x - a / 2 * dx * dx + a / 2 * dy * dy, s.z};
+    const double jac[3][3] = {{1 + a * dy, a * dx, 0}, {gamma - a * dx, 1 + a * dy, 0}, {0, 0, 1}};
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) j[r][c] = jac[r][c];
+  }
+  double det(Point3 s) const {
+    const double u = 1 + a * (s.y - y0), v = a * (s.x - x0);
+    return u * u + v * v - gamma * v;
+  }
+};
+
+Mesh3 reference_tetrahedron() {
+  Mesh3 m;
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.tetrahedra = {{0, 1, 2, 3}};
+  m.build_adjacency();
+  return m;
+}
+
+CsrMatrix couple(const Mesh3& fluid, const Basis3& fluid_space, const Mesh3& solid, const Basis3& multiplier,
+                 const SolidMap3& map, double c1, double c2, CouplingReport3* report = nullptr) {
+  CouplingOptions opt;
+  opt.c1 = c1;
+  opt.c2 = c2;
+  const FluidSide3 fs(fluid, fluid_space, {0});
+  const SolidSide3 ss(solid, multiplier, {0});
+  return assemble_coupling(fs, ss, map, opt, report);
+}
+
+double bilinear(const CsrMatrix& b, const std::vector<double>& l, const std::vector<double>& u) {
+  double s = 0;
+  for (int i = 0; i < b.rows; ++i)
+    for (int e = b.start[i]; e < b.start[i + 1]; ++e) s += l[i] * b.value[e] * u[b.column[e]];
+  return s;
+}
+
+template <class Space>
+std::vector<double> interpolate(const Space& space, const std::function<double(Point3)>& f) {
+  std::vector<double> v(space.dof_count());
+  for (int i = 0; i < space.dof_count(); ++i) v[i] = f(space.node(i));
+  return v;
+}
+
+std::string coupling_error(const Mesh3& fluid, const Mesh3& solid, const SolidMap3& map, CouplingReport3* report) {
+  const P1Tet f(fluid), s(solid);
+  try {
+    CouplingOptions opt;
+    const FluidSide3 fs(fluid, f, {0});
+    const SolidSide3 ss(solid, s, {0});
+    assemble_coupling(fs, ss, map, opt, report);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(Fold3d, FoldInsideATetrahedronIsAnError) {
+  const Mesh3 solid = reference_tetrahedron();
+  const Mesh3 fluid = box_mesh(4, 4, 4, {-4, -4, -4}, {8, 8, 8});
+  // folds: cylinders about (0.1 - gamma / 8, 0.65) of radius gamma / 8, inside the tetrahedron for z < 0.2
+  for (double gamma : {0.3, 0.05, 0.01, 0.002}) {
+    const Cylinder c{-4, 0.1, 0.4, gamma};
+    ASSERT_LT(c.det({0.1 - gamma / 8, 0.65, 0.1}), 0);
+    // positive at the corners and at every point of the degree-8 lattice, which holds the corners of the
+    // 8^2 sub-tetrahedra of a curved map's image and the lattice of the certification's first test
+    for (int p = 0; p < monomial_count3(8); ++p) ASSERT_GT(c.det(lattice_point3(8, p)), 0) << p;
+    const FormulaMap3 map(solid, c, 2);
+    const std::string e = coupling_error(fluid, solid, map, nullptr);
+    EXPECT_NE(e.find("the map folds solid tetrahedron 0 (its jacobian determinant is not positive at reference point"),
+              std::string::npos)
+        << "gamma " << gamma << ": " << e;
+  }
+  // the same map with the fold moved off the tetrahedron (axis at x = -0.3375, 0.3 beyond the face x = 0)
+  // is certified and assembled
+  const Cylinder off{-4, -0.3, 0.4, 0.3};
+  const FormulaMap3 valid(solid, off, 2);
+  CouplingReport3 report;
+  EXPECT_EQ(coupling_error(fluid, solid, valid, &report), "");
+  EXPECT_EQ(report.curved, 1);
+}
+
+namespace {
+
+// The P2 interpolant on the reference tetrahedron of the identity with the midpoint of edge (0, 1) slid by t
+// along it: X = s + 4 t l0 l1 (v1 - v0) (l the barycentric coordinates), the corners and faces fixed, so
+// the image is the tetrahedron itself; det dX/ds = 1 + 4t (l0 - l1) >= 1 - 4t (at vertex 1), a fold at t = 1/4.
+Point3 slid(Point3 s, double t) {
+  const double l0 = 1 - s.x - s.y - s.z, l1 = s.x;
+  return {s.x + 4 * t * l0 * l1, s.y, s.z};
+}
+
+}  // namespace
+
+TEST(Fold3d, P2MapsCloseToFoldingAreAccurate) {
+  const Mesh3 solid = reference_tetrahedron();
+  const Mesh3 fluid = box_mesh(3, 3, 3, {-0.5, -0.5, -0.5}, {2, 2, 2});
+  const P2Tet map_space(solid), fluid_p2(fluid);
+  const P1Tet multiplier(solid), fluid_p1(fluid);
+  // u = y1^2 + y2 y3 + y3, exact in P2; int_T u(X(s)) ds by a degree-8 rule on T (u o X has degree 4)
+  auto u = [](Point3 y) { return y.x * y.x + y.y * y.z + y.z; };
+  const std::vector<double> u_dofs = interpolate(fluid_p2, u);
+  auto map_for = [&](double t, std::vector<double> coef[3]) {
+    for (int a = 0; a < 3; ++a) coef[a].resize(map_space.dof_count());
+    for (int i = 0; i < map_space.dof_count(); ++i) {
+      const Point3 x = slid(map_space.node(i), t);
+      coef[0][i] = x.x;
+      coef[1][i] = x.y;
+      coef[2][i] = x.z;
+    }
+  };
+  const Basis3* spaces[3] = {&map_space, &map_space, &map_space};
+  const int comp[3] = {0, 0, 0};
+  for (double t : {0.1, 0.2}) {
+    std::vector<double> coef[3];
+    map_for(t, coef);
+    const double* c[3] = {coef[0].data(), coef[1].data(), coef[2].data()};
+    const FieldMap3 map(solid, spaces, c, comp);
+    double exact = 0;
+    for (const RulePoint3& q : tetrahedron_rule(8)) exact += q.weight / 6 * u(slid(q.xi, t));
+    CouplingReport3 report;
+    const CsrMatrix volume = couple(fluid, fluid_p1, solid, multiplier, map, 0, 1, &report);
+    double sum = 0;
+    for (double v : volume.value) sum += v;
+    EXPECT_NEAR(sum, 1.0 / 6, 1e-12 / 6) << "t " << t << ": " << report.summary();
+    EXPECT_EQ(report.split, 1) << report.summary();
+    const CsrMatrix b = couple(fluid, fluid_p2, solid, multiplier, map, 0, 1);
+    EXPECT_NEAR(bilinear(b, std::vector<double>(4, 1.0), u_dofs), exact, 1e-12 * exact) << "t " << t;
+  }
+  // within 4e-4 of the fold: more than 20000 parts, a near fold; beyond it: det < 0 at corner 1, a fold
+  for (double t : {0.2499, 0.26}) {
+    std::vector<double> coef[3];
+    map_for(t, coef);
+    const double* c[3] = {coef[0].data(), coef[1].data(), coef[2].data()};
+    const FieldMap3 map(solid, spaces, c, comp);
+    const std::string e = coupling_error(fluid, solid, map, nullptr);
+    EXPECT_NE(e.find(t < 0.25 ? "the map nearly folds solid tetrahedron 0"
+                              : "the map folds solid tetrahedron 0 (its jacobian "
+                                "determinant is not positive at reference point (1, 0, 0))"),
+              std::string::npos)
+        << "t " << t << ": " << e;
+  }
+}
+
+TEST(Fold3d, AffineP2MapsGiveTheP1MatricesBitForBit) {
+  // A rotated, sheared affine map as a P1 and as a P2 field: the P2 one is recognised as affine, so its
+  // matrices are the P1 one's bit for bit (the corners and the constant jacobian come from the same dofs).
+  const Mesh3 solid = box_mesh(2, 2, 2, {0.3, 0.3, 0.3}, {0.4, 0.4, 0.4}, 0.2, 5);
+  const Mesh3 fluid = box_mesh(4, 4, 4, {0, 0, 0}, {1, 1, 1}, 0.2, 6);
+  double r[3][3];
+  rotation({1, 2, 3}, 0.7, r);
+  r[0][1] += 0.3;  // a shear
+  auto affine = [&](Point3 s) {
+    const Point3 d = s - Point3{0.5, 0.5, 0.5};
+    return Point3{0.5 + r[0][0] * d.x + r[0][1] * d.y + r[0][2] * d.z,
+                  0.5 + r[1][0] * d.x + r[1][1] * d.y + r[1][2] * d.z,
+                  0.5 + r[2][0] * d.x + r[2][1] * d.y + r[2][2] * d.z};
+  };
+  const P1Tet p1(solid), multiplier(solid), fluid_p1(fluid);
+  const P2Tet p2(solid), fluid_p2(fluid);
+  auto field = [&](const auto& space, std::vector<double> coef[3]) {
+    for (int a = 0; a < 3; ++a) coef[a].resize(space.dof_count());
+    for (int i = 0; i < space.dof_count(); ++i) {
+      const Point3 x = affine(space.node(i));
+      coef[0][i] = x.x;
+      coef[1][i] = x.y;
+      coef[2][i] = x.z;
+    }
+  };
+  std::vector<double> c1[3], c2[3];
+  field(p1, c1);
+  field(p2, c2);
+  const int comp[3] = {0, 0, 0};
+  const Basis3* s1[3] = {&p1, &p1, &p1};
+  const Basis3* s2[3] = {&p2, &p2, &p2};
+  const double* v1[3] = {c1[0].data(), c1[1].data(), c1[2].data()};
+  const double* v2[3] = {c2[0].data(), c2[1].data(), c2[2].data()};
+  const FieldMap3 map1(solid, s1, v1, comp), map2(solid, s2, v2, comp);
+  for (const Basis3* f : {static_cast<const Basis3*>(&fluid_p1), static_cast<const Basis3*>(&fluid_p2)}) {
+    CouplingReport3 report1, report2;
+    const CsrMatrix b1 = couple(fluid, *f, solid, multiplier, map1, 0.5, 2, &report1);
+    const CsrMatrix b2 = couple(fluid, *f, solid, multiplier, map2, 0.5, 2, &report2);
+    EXPECT_EQ(report2.affine, solid.size()) << report2.summary();
+    EXPECT_EQ(report2.split, 0);
+    ASSERT_EQ(b1.value.size(), b2.value.size());
+    EXPECT_EQ(b1.start, b2.start);
+    EXPECT_EQ(b1.column, b2.column);
+    for (size_t e = 0; e < b1.value.size(); ++e) ASSERT_EQ(b1.value[e], b2.value[e]) << e;
+  }
+}
+
+TEST(Fold3d, BubbleMapsUpToTheFoldAreAccurate) {
+  // X = s + 256 b l0 l1 l2 l3 e1 on the reference tetrahedron, a P1b-like map of degree 4: the bubble
+  // vanishes on the faces, so the image is the tetrahedron itself; det dX/ds = 1 + 256 b d(l0 x y z)/dx
+  // = 1 - 256 b y z (2x + y + z - 1), smallest at the centre of the face l0 = 0: 1 - 256 b / 27, a fold at
+  // b = 27/256.
+  const Mesh3 solid = reference_tetrahedron();
+  const Mesh3 fluid = box_mesh(3, 3, 3, {-0.5, -0.5, -0.5}, {2, 2, 2});
+  const P1Tet multiplier(solid), fluid_p1(fluid);
+  const P2Tet fluid_p2(fluid);
+  auto u = [](Point3 y) { return y.x * y.x + y.y * y.z + y.z; };
+  const std::vector<double> u_dofs = interpolate(fluid_p2, u);
+  const double fold = 27.0 / 256;
+  for (double f : {0.2, 0.3, 0.5, 1.01}) {
+    const double b = f * fold;
+    auto x_of = [b](Point3 s) { return Point3{s.x + 256 * b * (1 - s.x - s.y - s.z) * s.x * s.y * s.z, s.y, s.z}; };
+    const FormulaMap3 map(
+        solid,
+        [&](Point3 s, Point3& x, double j[3][3]) {
+          x = x_of(s);
+          const double l0 = 1 - s.x - s.y - s.z, c = 256 * b;
+          const double row[3] = {1 + c * s.y * s.z * (l0 - s.x), c * s.x * s.z * (l0 - s.y),
+                                 c * s.x * s.y * (l0 - s.z)};
+          for (int r = 0; r < 3; ++r)
+            for (int col = 0; col < 3; ++col) j[r][col] = r == 0 ? row[col] : (r == col ? 1 : 0);
+        },
+        4);
+    if (f > 1) {
+      const std::string e = coupling_error(fluid, solid, map, nullptr);
+      EXPECT_NE(e.find("the map folds solid tetrahedron 0 (its jacobian determinant is not positive at reference "
+                       "point (0.333, 0.333, 0.333))"),
+                std::string::npos)
+          << e;
+      continue;
+    }
+    // u o X has degree 8: the degree-8 rule on the tetrahedron is exact
+    double exact = 0;
+    for (const RulePoint3& q : tetrahedron_rule(8)) exact += q.weight / 6 * u(x_of(q.xi));
+    CouplingReport3 report;
+    const CsrMatrix volume = couple(fluid, fluid_p1, solid, multiplier, map, 0, 1, &report);
+    double sum = 0;
+    for (double v : volume.value) sum += v;
+    EXPECT_NEAR(sum, 1.0 / 6, 1e-12 / 6) << "b " << f << " of the fold: " << report.summary();
+    const CsrMatrix bu = couple(fluid, fluid_p2, solid, multiplier, map, 0, 1);
+    EXPECT_NEAR(bilinear(bu, std::vector<double>(4, 1.0), u_dofs), exact, 1e-12 * exact) << "b " << f;
+  }
+}
+
+TEST(Fold3d, BernsteinCertificateAgainstDenseSampling) {
+  // Random cubics c + sum of products of three affine functions: a "positive" verdict must hold at every
+  // point of the degree-48 lattice, a "folds" one must name a point where the cubic is <= 0.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> coef(-1, 1);
+  int verdicts[3] = {0, 0, 0};
+  for (int trial = 0; trial < 300; ++trial) {
+    double a[3][4];
+    for (auto& row : a)
+      for (double& v : row) v = coef(rng);
+    const double c = 0.3 * (trial % 5) * std::fabs(coef(rng)) + 0.05;
+    auto p = [&](Point3 x) {
+      double prod = 1;
+      for (const auto& row : a) prod *= row[0] + row[1] * x.x + row[2] * x.y + row[3] * x.z;
+      return c + prod;
+    };
+    Point3 where;
+    int tested = 0;
+    const JacobianSign s = jacobian_sign3(
+        [&](Point3 x) {
+          return DetSample{p(x), 1e-15};
+        },
+        3, 10, 4096, where, &tested);
+    ++verdicts[static_cast<int>(s)];
+    if (s == JacobianSign::Positive) {
+      for (int q = 0; q < monomial_count3(48); ++q) ASSERT_GT(p(lattice_point3(48, q)), 0) << trial;
+    } else if (s == JacobianSign::Folds) {
+      EXPECT_LE(p(where), 0) << trial;
+      EXPECT_GE(where.x, 0);
+      EXPECT_GE(where.y, 0);
+      EXPECT_GE(where.z, 0);
+      EXPECT_LE(where.x + where.y + where.z, 1 + 1e-15);
+    }
+  }
+  // both verdicts occur; and a cubic positive with a minimum of 1e-3 inside (not at a lattice point) is
+  // certified only after refinement, one touching zero there is a near fold
+  EXPECT_GT(verdicts[static_cast<int>(JacobianSign::Positive)], 30);
+  EXPECT_GT(verdicts[static_cast<int>(JacobianSign::Folds)], 30);
+  for (double m : {1e-3, 0.0}) {
+    const Point3 o{0.21, 0.17, 0.23};
+    auto p = [&](Point3 x) {
+      const Point3 d = x - o;
+      return DetSample{m + dot(d, d) * (1 + d.x), 1e-15};
+    };
+    Point3 where;
+    int tested = 0;
+    const JacobianSign s = jacobian_sign3(p, 3, 10, 4096, where, &tested);
+    EXPECT_EQ(s, m > 0 ? JacobianSign::Positive : JacobianSign::NearlyFolds) << m;
+    EXPECT_GT(tested, 8) << m;
+  }
+}
