@@ -33,10 +33,16 @@ compare: deps build
 	@OUT=$(abspath $(OUT)) scripts/evidence --summary
 
 # Assembly speed over a sweep of sizes (built-in vs dlmfsi, threads, cost per piece, peak memory):
-# CSV + PNG under $(OUT)/bench. QUICK=1 for tiny sizes.
+# CSV + PNG under $(OUT)/bench; then the rotating disk on 1 and 2 processes (time per step split into
+# assembly, analysis, factorization and solve, peak memory per process) under $(OUT)/bench-mpi when the
+# distributed solve is built. About 30 + 40 minutes; QUICK=1 for tiny sizes.
 bench: deps build
 	@cmake --build $(BUILD) --target coupling_bench -j $(JOBS)
 	DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) QUICK=$(QUICK) scripts/bench
+	@if [ -f $(BUILD)/plugin/dlmfsi_mumps.so ]; then \
+	  echo "DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) QUICK=$(QUICK) scripts/bench-mpi"; \
+	  DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) QUICK=$(QUICK) scripts/bench-mpi; \
+	else echo "note: no $(BUILD)/plugin/dlmfsi_mumps.so (libmumps-dev missing): scripts/bench-mpi skipped"; fi
 
 # Accuracy against speed, the scenes' Pareto fronts and the stability map: CSV + PNG under
 # $(OUT)/evidence; then the falling disk's convergence study and the FSI-3 studies (hours of CPU).
