@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "lattice.hpp"
+#include "polynomial_fit.hpp"
 
 namespace dlmfsi {
 
@@ -35,14 +36,7 @@ void evaluate_fitted(const BasisFit& fit, int k, const double* j, const Point* x
   }
   for (size_t f = 0; f < width; ++f) {
     if (shared && fit.twin(static_cast<int>(f)) >= 0) continue;
-    const double* c = coef + f * nm;
-    double* out = value + f * n;
-    for (int p = 0; p < n; ++p) out[p] = c[0];  // monomial 0 is 1
-    for (int m = 1; m < nm; ++m) {
-      const double cm = c[m];
-      const double* row = mono + static_cast<size_t>(m) * n;
-      for (int p = 0; p < n; ++p) out[p] += cm * row[p];
-    }
+    sum_monomials(coef + f * nm, nm, mono, n, value + f * n);
     if (!dx) continue;
     const double *e1 = deriv + f * 2 * nm1, *e2 = e1 + nm1;
     double *gx = dx + f * n, *gy = dy + f * n;

@@ -48,6 +48,17 @@ void fit_on_lattice(const BasisOf<D>& basis, int k, const std::vector<int>& func
     }
 }
 
+// out[p] = sum_m c[m] mono[m * n + p], p < n: a fitted function at n points whose monomial values are
+// stored monomial by monomial (monomial 0 is 1), summed in the order of the monomials.
+inline void sum_monomials(const double* c, int nm, const double* mono, int n, double* out) {
+  for (int p = 0; p < n; ++p) out[p] = c[0];
+  for (int m = 1; m < nm; ++m) {
+    const double cm = c[m];
+    const double* row = mono + static_cast<std::size_t>(m) * n;
+    for (int p = 0; p < n; ++p) out[p] += cm * row[p];
+  }
+}
+
 // Does the fit (nm coefficients per function) give the basis values sample (BasisOf::values' layout) at a
 // point where the monomials take the values v? Up to round-off relative to the sum of the terms' sizes.
 template <int D>

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "lattice3d.hpp"
+#include "polynomial_fit.hpp"
 
 namespace dlmfsi {
 
@@ -27,13 +28,7 @@ void evaluate_polynomials3(int degree, const double* coef, size_t width, const i
   for (size_t f = 0; f < width; ++f) {
     if (twin && twin[f] >= 0) continue;  // copied below
     const double* c = coef + f * nm;
-    double* out = value + f * n;
-    for (int p = 0; p < n; ++p) out[p] = c[0];  // monomial 0 is 1
-    for (int m = 1; m < nm; ++m) {
-      const double cm = c[m];
-      const double* row = mono + static_cast<size_t>(m) * n;
-      for (int p = 0; p < n; ++p) out[p] += cm * row[p];
-    }
+    sum_monomials(c, nm, mono, n, value + f * n);
     if (!gradient) continue;
     // the reference derivatives' coefficients on the degree - 1 monomials
     double* e = ref.data();
