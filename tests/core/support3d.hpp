@@ -107,7 +107,9 @@ inline std::string piece_shape(const Piece3& p, const Tet& a, const Tet& b, doub
 }  // namespace dlmfsi::test3d
 
 #include <random>
+#include <vector>
 
+#include "csr_matrix.hpp"
 #include "mesh3d.hpp"
 
 namespace dlmfsi::test3d {
@@ -367,6 +369,14 @@ inline void rotation(Point3 axis, double angle, double r[3][3]) {
   r[1][2] -= s * u[0];
   r[2][0] -= s * u[1];
   r[2][1] += s * u[0];
+}
+
+// l' B u for a compressed-row matrix B.
+inline double bilinear(const CsrMatrix& b, const std::vector<double>& l, const std::vector<double>& u) {
+  double s = 0;
+  for (int i = 0; i < b.rows; ++i)
+    for (int e = b.start[i]; e < b.start[i + 1]; ++e) s += l[i] * b.value[e] * u[b.column[e]];
+  return s;
 }
 
 }  // namespace dlmfsi::test3d

@@ -35,13 +35,6 @@ CsrMatrix couple(const Mesh3& fluid, const Basis3& fluid_space, const Mesh3& sol
   return assemble_coupling(fs, ss, map, opt, report);
 }
 
-double bilinear(const CsrMatrix& b, const std::vector<double>& l, const std::vector<double>& u) {
-  double s = 0;
-  for (int i = 0; i < b.rows; ++i)
-    for (int e = b.start[i]; e < b.start[i + 1]; ++e) s += l[i] * b.value[e] * u[b.column[e]];
-  return s;
-}
-
 double exact_volume(const Mesh3& m) {
   double v = 0;
   for (int k = 0; k < m.size(); ++k) {
