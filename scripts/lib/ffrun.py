@@ -82,12 +82,17 @@ class Job:
         return default if self.summary is None else self.summary.get(key, default)
 
 
-def last_summary(log_path):
-    """The last `dlmfsi-result` line of a log as a dict, or None (no such line, or no log)."""
+def read_log(log_path):
+    """A log's text, "" when there is no log."""
     if not os.path.exists(log_path):
-        return None
+        return ""
     with open(log_path, errors="replace") as log:
-        lines = [l for l in log.read().splitlines() if l.startswith("dlmfsi-result")]
+        return log.read()
+
+
+def last_summary(text):
+    """The last `dlmfsi-result` line of a log's text as a dict, or None."""
+    lines = [l for l in text.splitlines() if l.startswith("dlmfsi-result")]
     return parse_result(lines[-1]) if lines else None
 
 
@@ -109,7 +114,7 @@ def run_jobs(jobs, runs_dir, parallel=2, cpu_limit=None, out_option=True, reuse=
     def one(job):
         d = os.path.join(runs_dir, job.tag)
         log_path = os.path.join(d, "log.txt")
-        kept = reuse or (resume and last_summary(log_path) is not None)
+        kept = reuse or (resume and last_summary(read_log(log_path)) is not None)
         if not kept:
             os.makedirs(d, exist_ok=True)
             cmd = [FF, job.script] + job.args + (["-out", d] if out_option else [])
@@ -124,11 +129,8 @@ def run_jobs(jobs, runs_dir, parallel=2, cpu_limit=None, out_option=True, reuse=
                 except subprocess.TimeoutExpired:
                     job.rc = 124
             job.wall = time.time() - t0
-        text = ""
-        if os.path.exists(log_path):
-            with open(log_path, errors="replace") as log:
-                text = log.read()
-        job.summary = last_summary(log_path)
+        text = read_log(log_path)
+        job.summary = last_summary(text)
         if kept:
             job.rc = 0 if job.summary else 1
             job.wall = job.get("seconds")

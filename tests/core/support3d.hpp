@@ -109,7 +109,9 @@ inline std::string piece_shape(const Piece3& p, const Tet& a, const Tet& b, doub
 #include <random>
 #include <vector>
 
+#include "coupling3d.hpp"
 #include "csr_matrix.hpp"
+#include "errors.hpp"
 #include "mesh3d.hpp"
 
 namespace dlmfsi::test3d {
@@ -377,6 +379,21 @@ inline double bilinear(const CsrMatrix& b, const std::vector<double>& l, const s
   for (int i = 0; i < b.rows; ++i)
     for (int e = b.start[i]; e < b.start[i + 1]; ++e) s += l[i] * b.value[e] * u[b.column[e]];
   return s;
+}
+
+// The error message of assembling P1 x P1 on the two meshes under the map ("" when it assembles);
+// drop: the solid's part outside the fluid mesh dropped rather than an error.
+inline std::string coupling_error(const Mesh3& fluid, const Mesh3& solid, const SolidMap3& map, bool drop = false,
+                                  CouplingReport3* report = nullptr) {
+  const P1Tet f(fluid), s(solid);
+  try {
+    CouplingOptions opt;
+    opt.drop_outside = drop;
+    assemble_coupling(FluidSide3(fluid, f, {0}), SolidSide3(solid, s, {0}), map, opt, report);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
 }
 
 }  // namespace dlmfsi::test3d
