@@ -6,16 +6,17 @@
 
 namespace dlmfsi {
 
-template <bool AllRows>
-void CompressedRows::compress(int cols, const std::vector<std::vector<Triplet>>& parts) {
+template <bool AllInRange>
+void CompressedRows::compress(int cols, const std::vector<Triplet>* parts, std::size_t count) {
   // Counting sort by row (stable: the parts' order is kept within a row, so sums come out the same for any
   // range), then per row duplicates summed through a column -> position table, and the row's few distinct
   // columns sorted.
-  const int rows = last - first, first_row = AllRows ? 0 : first;
-  auto in_range = [&](int row) { return AllRows || (row >= first_row && row < last); };
+  const int rows = last - first, first_row = first;
+  auto in_range = [&](int row) { return AllInRange || (row >= first_row && row < last); };
+  const std::vector<Triplet>* const parts_end = parts + count;
   offset_.assign(rows + 1, 0);
-  for (const auto& p : parts)
-    for (const Triplet& t : p)
+  for (const std::vector<Triplet>* p = parts; p != parts_end; ++p)
+    for (const Triplet& t : *p)
       if (in_range(t.row)) ++offset_[t.row - first_row + 1];
   for (int i = 0; i < rows; ++i) offset_[i + 1] += offset_[i];
   const size_t triplets = offset_.back();
@@ -24,8 +25,8 @@ void CompressedRows::compress(int cols, const std::vector<std::vector<Triplet>>&
   bucket_col_.resize(triplets);
   bucket_value_.resize(triplets);
   fill_.assign(offset_.begin(), offset_.end() - 1);
-  for (const auto& p : parts)
-    for (const Triplet& t : p) {
+  for (const std::vector<Triplet>* p = parts; p != parts_end; ++p)
+    for (const Triplet& t : *p) {
       if (!in_range(t.row)) continue;
       const int at = fill_[t.row - first_row]++;
       bucket_col_[at] = t.col;
@@ -78,7 +79,7 @@ void CompressedRows::compress(int cols, const std::vector<std::vector<Triplet>>&
   }
 }
 
-template void CompressedRows::compress<true>(int, const std::vector<std::vector<Triplet>>&);
-template void CompressedRows::compress<false>(int, const std::vector<std::vector<Triplet>>&);
+template void CompressedRows::compress<true>(int, const std::vector<Triplet>*, std::size_t);
+template void CompressedRows::compress<false>(int, const std::vector<Triplet>*, std::size_t);
 
 }  // namespace dlmfsi

@@ -1,5 +1,6 @@
 // A range of the rows of a sparse matrix compressed from triplets.
 #pragma once
+#include <cstddef>
 #include <utility>
 #include <vector>
 
@@ -18,10 +19,11 @@ class CompressedRows {
   std::vector<int> column;
   std::vector<double> value;
 
-  // Compresses the triplets of parts whose rows fall in the range (AllRows: the range holds every row,
-  // no triplet to skip); linear in the number of triplets plus the sorts of each row's distinct columns.
-  template <bool AllRows>
-  void compress(int cols, const std::vector<std::vector<Triplet>>& parts);
+  // Compresses the triplets of the count parts whose rows fall in the range (AllInRange: every triplet
+  // given does, none to skip); linear in the number of triplets plus the sorts of each row's distinct
+  // columns.
+  template <bool AllInRange>
+  void compress(int cols, const std::vector<Triplet>* parts, std::size_t count);
 
  private:
   // counting sort by row: offsets, fill pointers and the buckets' columns and values

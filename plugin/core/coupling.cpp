@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <utility>
 
 #include "component_pairs.hpp"
 #include "errors.hpp"
@@ -31,13 +32,13 @@ std::string CouplingReport::summary() const {
 namespace {
 
 // One thread's share of one call: each solid triangle's block, integrated by the chosen TriangleIntegrator
-// and scattered to the thread's triplets.
+// and scattered to the thread's triplets, one list per row range of the compression (triplets[r]).
 class Assembler {
  public:
   Assembler(const Integrand& integrand, const FluidSide& fluid, const SolidSide& solid, const SolidMap& map,
             const CouplingOptions& options, const CouplingReport& degrees, FluidSearch& search,
-            std::vector<Triplet>& triplets)
-      : solid_(solid), map_(map), triplets_(triplets),
+            std::vector<std::vector<Triplet>*> triplets, const RowRanges& ranges)
+      : solid_(solid), map_(map), triplets_(std::move(triplets)), ranges_(ranges),
         block_(solid.space().local_dofs(), integrand.pairs.used_multiplier_dofs(), fluid.space().local_dofs(),
                integrand.pairs.used_fluid_dofs()) {
     report.fluid_degree = degrees.fluid_degree;
@@ -49,9 +50,12 @@ class Assembler {
   Assembler& operator=(const Assembler&) = delete;
 
   void run(const int* first, const int* last) {
-    triplets_.clear();
     // about two fluid triangles' columns per solid triangle: room for most runs without regrowing
-    triplets_.reserve(static_cast<size_t>(last - first) * 2 * block_.used_entries_per_fluid_element());
+    const size_t room = static_cast<size_t>(last - first) * 2 * block_.used_entries_per_fluid_element();
+    for (std::vector<Triplet>* list : triplets_) {
+      list->clear();
+      list->reserve(room / triplets_.size());
+    }
     for (const int* k = first; k != last; ++k) solid_triangle(*k);
   }
 
@@ -72,12 +76,13 @@ class Assembler {
       report.worst_outside = outside;
       report.worst_triangle = ks;
     }
-    block_.scatter(triplets_);
+    block_.scatter(triplets_.data(), ranges_);
   }
 
   const SolidSide& solid_;
   const SolidMap& map_;
-  std::vector<Triplet>& triplets_;
+  const std::vector<std::vector<Triplet>*> triplets_;
+  const RowRanges ranges_;
   LocalBlock block_;
   std::unique_ptr<TriangleIntegrator> integrator_;
 };
@@ -213,15 +218,22 @@ const CsrMatrix& CouplingAssembly::assemble_checked(const FluidSide& fluid, cons
   const bool parallel = fluid.basis().fitted() && solid.basis().fitted() && map.degree() >= 1;
   const int threads = parallel ? std::max(1, std::min(opt.threads, 64)) : 1;
   while (static_cast<int>(threads_.size()) < threads) threads_.push_back(std::make_unique<Thread>());
-  if (static_cast<int>(triplets_.size()) < threads) triplets_.resize(threads);
-  for (size_t t = threads; t < triplets_.size(); ++t) triplets_[t].clear();  // threads of a former call
+  // The compression's row ranges (one per requested thread: it touches neither the caller's Basis nor the
+  // map), and the triplet lists: thread t's triplets of range r in triplets_[r * threads + t].
+  const int rows = solid.space().dof_count();
+  const RowRanges ranges{rows, std::max(1, std::min(std::max(1, std::min(opt.threads, 64)), rows))};
+  const size_t lists = static_cast<size_t>(threads) * ranges.n;
+  if (triplets_.size() < lists) triplets_.resize(lists);
   // The map into the fluid side's scaled coordinates.
   const ScaledMap scaled_map(map, fluid.scale());
   const SolidMap& fluid_map = fluid.scale() == 0 ? map : scaled_map;
   std::vector<std::unique_ptr<Assembler>> assemblers;
-  for (int t = 0; t < threads; ++t)
+  for (int t = 0; t < threads; ++t) {
+    std::vector<std::vector<Triplet>*> lists_of_t;
+    for (int r = 0; r < ranges.n; ++r) lists_of_t.push_back(&triplets_[static_cast<size_t>(r) * threads + t]);
     assemblers.push_back(std::make_unique<Assembler>(integrand, fluid, solid, fluid_map, opt, total,
-                                                     threads_[t]->search_on(fluid), triplets_[t]));
+                                                     threads_[t]->search_on(fluid), std::move(lists_of_t), ranges));
+  }
   total.setup_seconds = seconds_since(start);
 
   const int size = solid.mesh().size();
@@ -232,9 +244,7 @@ const CsrMatrix& CouplingAssembly::assemble_checked(const FluidSide& fluid, cons
 
   for (const auto& a : assemblers) add_counts(a->report, total);
   check_outside(opt, fluid.scale(), total);
-  // The compression touches neither the caller's Basis nor the map: on the requested threads.
-  const CsrMatrix& m = matrix_.build(solid.space().dof_count(), fluid.space().dof_count(), triplets_,
-                                     std::max(1, std::min(opt.threads, 64)));
+  const CsrMatrix& m = matrix_.build_by_range(ranges, fluid.space().dof_count(), triplets_.data(), threads);
   check_finite(m, opt);
   total.seconds = seconds_since(start);
   if (report) *report = total;

@@ -83,7 +83,7 @@ class CouplingAssembly {
                                     const CouplingOptions& options, CouplingReport* report);
   struct Thread;
   std::vector<std::unique_ptr<Thread>> threads_;
-  std::vector<std::vector<Triplet>> triplets_;  // per thread
+  std::vector<std::vector<Triplet>> triplets_;  // per row range and thread (assemble_checked)
   std::vector<int> share_;                      // the solid triangles of part `part`, in order
   CsrBuilder matrix_;
 };

@@ -9,6 +9,15 @@ struct Triplet {
   double value;
 };
 
+// The rows 0 .. rows - 1 split into n consecutive ranges, one per compressing thread: range t holds the
+// rows first(t) .. first(t + 1) - 1.
+struct RowRanges {
+  int rows = 0, n = 1;
+  int first(int t) const { return static_cast<int>(static_cast<long long>(rows) * t / n); }
+  // The range holding row: the largest t with first(t) <= row, i.e. rows t < (row + 1) n.
+  int of(int row) const { return static_cast<int>((static_cast<long long>(row + 1) * n - 1) / rows); }
+};
+
 // Row i holds the entries start[i] .. start[i + 1] - 1: columns column[e] (increasing) and values value[e].
 struct CsrMatrix {
   int rows = 0, cols = 0;

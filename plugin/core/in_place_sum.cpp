@@ -16,10 +16,10 @@ void InPlaceSum::start(const CsrMatrix& m) {
   }
 }
 
-bool InPlaceSum::sum_rows(CsrMatrix& m, int first, int last, const std::vector<std::vector<Triplet>>& parts) {
+bool InPlaceSum::sum_rows(CsrMatrix& m, int first, int last, const std::vector<Triplet>* parts, std::size_t count) {
   size_t covered = 0;  // entries set
-  for (const auto& p : parts)
-    for (const Triplet& t : p) {
+  for (const std::vector<Triplet>* p = parts; p != parts + count; ++p)
+    for (const Triplet& t : *p) {
       if (t.row < first || t.row >= last) continue;
       const int* b = m.column.data() + m.start[t.row];
       const int* e = m.column.data() + m.start[t.row + 1];

@@ -1,5 +1,6 @@
 // Triplets summed into the values of a matrix that already holds their pattern.
 #pragma once
+#include <cstddef>
 #include <vector>
 
 #include "csr_matrix.hpp"
@@ -13,10 +14,10 @@ class InPlaceSum {
  public:
   // A new summation into matrix m (its entries not yet set).
   void start(const CsrMatrix& m);
-  // Sums the triplets of rows first .. last - 1 into m; false when a triplet falls outside m's pattern or
+  // Sums the triplets of rows first .. last - 1 in the count parts into m; false when a triplet falls outside m's pattern or
   // some entry of those rows gets none (the pattern changed). Rows of different calls may be summed on
   // different threads.
-  bool sum_rows(CsrMatrix& m, int first, int last, const std::vector<std::vector<Triplet>>& parts);
+  bool sum_rows(CsrMatrix& m, int first, int last, const std::vector<Triplet>* parts, std::size_t count);
 
  private:
   std::vector<unsigned> stamp_;  // per entry: the summation that last set it

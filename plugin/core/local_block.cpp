@@ -26,13 +26,19 @@ void LocalBlock::enter_fluid_element(const int* dofs) {
 }
 
 void LocalBlock::scatter(std::vector<Triplet>& out) {
+  std::vector<Triplet>* const one[1] = {&out};
+  scatter(one, RowRanges{1, 1});
+}
+
+void LocalBlock::scatter(std::vector<Triplet>* const* out, const RowRanges& ranges) {
   const size_t columns = column_dofs_.size();
   for (int i : used_rows_) {
     const int row = row_dofs_[i];
+    std::vector<Triplet>& to = ranges.n == 1 ? *out[0] : *out[ranges.of(row)];
     double* entry = &entries_[i];
     for (size_t c = 0; c < columns; ++c, entry += rows_) {
       if (*entry == 0.0) continue;
-      out.push_back({row, column_dofs_[c], *entry});
+      to.push_back({row, column_dofs_[c], *entry});
       *entry = 0.0;
     }
   }

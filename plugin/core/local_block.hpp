@@ -41,6 +41,8 @@ class LocalBlock {
   // column order, and sets them back to zero. Entries never touched stay exactly zero (a multiplier
   // component paired with another fluid component) and are left out.
   void scatter(std::vector<Triplet>& out);
+  // The same, each row's triplets appended to out[ranges.of(row)] (CsrBuilder::build_by_range).
+  void scatter(std::vector<Triplet>* const* out, const RowRanges& ranges);
 
   // Entries of one solid element for each used row and fluid column: an estimate of the triplets.
   size_t used_entries_per_fluid_element() const { return used_rows_.size() * used_fluid_dofs_.size(); }

@@ -9,26 +9,52 @@ namespace dlmfsi {
 
 const CsrMatrix& CsrBuilder::build(int rows, int cols, const std::vector<std::vector<Triplet>>& parts, int threads) {
   const int n = std::max(1, std::min(threads, rows));
+  // n == 1: the one range holds every row
+  if (n == 1) return build_ranges<true>(rows, cols, 1, parts.size(), [&](int) { return parts.data(); });
+  return build_ranges<false>(rows, cols, n, parts.size(), [&](int) { return parts.data(); });
+}
+
+const CsrMatrix& CsrBuilder::build_by_range(const RowRanges& ranges, int cols, const std::vector<Triplet>* parts,
+                                            int per_range) {
+  return build_ranges<true>(ranges.rows, cols, ranges.n, static_cast<std::size_t>(per_range),
+                            [&](int t) { return parts + static_cast<std::size_t>(t) * per_range; });
+}
+
+template <bool AllInRange, class PartsOf>
+const CsrMatrix& CsrBuilder::build_ranges(int rows, int cols, int n, std::size_t count, PartsOf from_range) {
+  const RowRanges split{rows, n};
   while (static_cast<int>(ranges_.size()) < n) ranges_.push_back(std::make_unique<CompressedRows>());
   for (int t = 0; t < n; ++t) {
-    ranges_[t]->first = static_cast<int>(static_cast<long long>(rows) * t / n);
-    ranges_[t]->last = static_cast<int>(static_cast<long long>(rows) * (t + 1) / n);
+    ranges_[t]->first = split.first(t);
+    ranges_[t]->last = split.first(t + 1);
   }
   CsrMatrix& m = matrix_;
   kept_pattern_ = m.rows == rows && m.cols == cols && m.start.size() == static_cast<size_t>(rows) + 1;
   if (kept_pattern_) {
     in_place_sum_.start(m);
     range_kept_.resize(n);
-    on_threads(n, [&](int t) { range_kept_[t] = in_place_sum_.sum_rows(m, ranges_[t]->first, ranges_[t]->last, parts); });
+    on_threads(n, [&](int t) {
+      range_kept_[t] = in_place_sum_.sum_rows(m, ranges_[t]->first, ranges_[t]->last, from_range(t), count);
+    });
     for (int t = 0; t < n; ++t) kept_pattern_ = kept_pattern_ && range_kept_[t];
     if (kept_pattern_) return m;
   }
   // No pattern to keep until the rows are all in place (an error on the way leaves none).
   m.start.clear();
-  if (n == 1)
-    ranges_[0]->compress<true>(cols, parts);
-  else
-    on_threads(n, [&](int t) { ranges_[t]->compress<false>(cols, parts); });
+  on_threads(n, [&](int t) { ranges_[t]->compress<AllInRange>(cols, from_range(t), count); });
+  m.rows = rows;
+  m.cols = cols;
+  m.start.resize(rows + 1);
+  m.start[0] = 0;
+  if (n == 1) {
+    // One range: its arrays become the matrix's (and the matrix's former ones its buffers), no copy.
+    CompressedRows& r = *ranges_[0];
+    m.column.swap(r.column);
+    m.value.swap(r.value);
+    int at = 0;
+    for (int i = 0; i < rows; ++i) m.start[i + 1] = at += r.length[i];
+    return m;
+  }
   // The ranges' rows one after the other.
   std::vector<size_t> base(n + 1, 0);
   for (int t = 0; t < n; ++t) base[t + 1] = base[t] + ranges_[t]->column.size();
@@ -36,9 +62,6 @@ const CsrMatrix& CsrBuilder::build(int rows, int cols, const std::vector<std::ve
   room(m.value, base[n]);
   m.column.resize(base[n]);
   m.value.resize(base[n]);
-  m.rows = rows;
-  m.cols = cols;
-  m.start.resize(rows + 1);
   try {
     on_threads(n, [&](int t) {
       const CompressedRows& r = *ranges_[t];

@@ -1,5 +1,6 @@
 // Compressed rows from the triplets of an assembly (csr_matrix.hpp), with buffers kept across a time loop.
 #pragma once
+#include <cstddef>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -22,6 +23,13 @@ class CsrBuilder {
   CsrBuilder(const CsrBuilder&) = delete;
   CsrBuilder& operator=(const CsrBuilder&) = delete;
   const CsrMatrix& build(int rows, int cols, const std::vector<std::vector<Triplet>>& parts, int threads = 1);
+  // The same from triplets already split by row range (an assembly that scatters into ranges.n lists per
+  // thread): range t's triplets are exactly parts[t * per_range] .. parts[t * per_range + per_range - 1],
+  // in order, and each range, on its own thread, reads only those. The matrix is build's for the parts in
+  // the order "per_range lists of range 0, of range 1, ..." with ranges.n threads: the same bit for bit as
+  // for the unsplit lists, since a row's triplets keep their order.
+  const CsrMatrix& build_by_range(const RowRanges& ranges, int cols, const std::vector<Triplet>* parts,
+                                  int per_range);
   const CsrMatrix& matrix() const { return matrix_; }
   // Did the last build keep the pattern of the one before?
   bool kept_pattern() const { return kept_pattern_; }
@@ -29,6 +37,10 @@ class CsrBuilder {
   CsrMatrix release() { return std::exchange(matrix_, CsrMatrix{}); }
 
  private:
+  // Range t of n reads the count lists from_range(t) (AllInRange: only triplets of its rows).
+  template <bool AllInRange, class PartsOf>
+  const CsrMatrix& build_ranges(int rows, int cols, int n, std::size_t count, PartsOf from_range);
+
   CsrMatrix matrix_;
   bool kept_pattern_ = false;
   std::vector<std::unique_ptr<CompressedRows>> ranges_;  // one per thread

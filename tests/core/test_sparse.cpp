@@ -146,3 +146,62 @@ TEST(Sparse, ThreadedBuildIsTheSameBitForBit) {
   same(empty.build(0, 5, {}, 3), compress(0, 5, {}));
   same(empty.build(4, 5, {{}, {}}, 3), compress(4, 5, {{}, {}}));
 }
+
+// RowRanges::of is the inverse of first: every row lies in the range whose first row is the largest at or
+// below it, for row counts and range counts that do not divide each other.
+TEST(Sparse, RowRangesOfInvertsFirst) {
+  for (int rows : {1, 2, 3, 7, 10, 64, 1001})
+    for (int n = 1; n <= std::min(rows, 70); ++n) {
+      const RowRanges r{rows, n};
+      EXPECT_EQ(r.first(0), 0);
+      EXPECT_EQ(r.first(n), rows);
+      for (int row = 0; row < rows; ++row) {
+        const int t = r.of(row);
+        ASSERT_TRUE(t >= 0 && t < n) << rows << " " << n << " " << row;
+        ASSERT_TRUE(r.first(t) <= row && row < r.first(t + 1)) << rows << " " << n << " " << row;
+      }
+    }
+}
+
+// Triplets split by row range as an assembly scatters them (each thread's list cut into one list per
+// range) give build's matrix of the unsplit lists bit for bit, on a new pattern, in place on a kept one
+// and rebuilt on a changed one, for any number of ranges.
+TEST(Sparse, BuildByRangeIsBuildOfTheUnsplitTriplets) {
+  const int rows = 150, cols = 400;
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> mantissa(-1, 1);
+  std::vector<std::vector<Triplet>> threads(3);  // the unsplit lists of three assembling threads
+  for (int e = 0; e < 12000; ++e)
+    threads[rng() % 3].push_back({static_cast<int>(rng() % rows), static_cast<int>(rng() % 30),
+                                  std::ldexp(mantissa(rng), static_cast<int>(rng() % 40) - 20)});
+  auto split = [&](const std::vector<std::vector<Triplet>>& lists, const RowRanges& ranges) {
+    std::vector<std::vector<Triplet>> out(lists.size() * ranges.n);  // range r, thread t: r * threads + t
+    for (size_t t = 0; t < lists.size(); ++t)
+      for (const Triplet& x : lists[t]) out[ranges.of(x.row) * lists.size() + t].push_back(x);
+    return out;
+  };
+  auto same = [](const CsrMatrix& got, const CsrMatrix& want) {
+    EXPECT_EQ(got.start, want.start);
+    EXPECT_EQ(got.column, want.column);
+    ASSERT_EQ(got.value.size(), want.value.size());
+    for (size_t k = 0; k < got.value.size(); ++k)
+      ASSERT_EQ(std::memcmp(&got.value[k], &want.value[k], sizeof(double)), 0) << "entry " << k;
+  };
+  for (int n : {1, 2, 5, 150}) {
+    SCOPED_TRACE(n);
+    const RowRanges ranges{rows, n};
+    auto lists = threads;
+    CsrBuilder builder;
+    auto parts = split(lists, ranges);
+    same(builder.build_by_range(ranges, cols, parts.data(), 3), compress(rows, cols, lists));
+    EXPECT_FALSE(builder.kept_pattern());
+    revalue(lists, 0.3);
+    parts = split(lists, ranges);
+    same(builder.build_by_range(ranges, cols, parts.data(), 3), compress(rows, cols, lists));
+    EXPECT_TRUE(builder.kept_pattern());
+    lists[2].push_back({rows - 1, cols - 1, 0.5});  // a new entry
+    parts = split(lists, ranges);
+    same(builder.build_by_range(ranges, cols, parts.data(), 3), compress(rows, cols, lists));
+    EXPECT_FALSE(builder.kept_pattern());
+  }
+}
