@@ -85,9 +85,12 @@ void MomentIntegrator::add(const MappedTriangle& mt, int kf, const Moments& mo, 
     fa[f] = mass * area * fv[f];
     fmx[f] = mass * (mo.mxx * fgx[f] + mo.mxy * fgy[f]);
     fmy[f] = mass * (mo.mxy * fgx[f] + mo.myy * fgy[f]);
-    fcx[f] = stiff * (fgx[f] * j[0][0] + fgy[f] * j[1][0]);
-    fcy[f] = stiff * (fgx[f] * j[0][1] + fgy[f] * j[1][1]);
   }
+  if (gradients_)
+    for (int f = 0; f < fw; ++f) {
+      fcx[f] = stiff * (fgx[f] * j[0][0] + fgy[f] * j[1][0]);
+      fcy[f] = stiff * (fgx[f] * j[0][1] + fgy[f] * j[1][1]);
+    }
   // per multiplier function: its gradient in y, (dX/ds)^-T grad_s psi
   double syx[kMaxFunctions], syy[kMaxFunctions];
   for (int f = 0; f < sw; ++f) {
