@@ -14,9 +14,9 @@ class InPlaceSum {
  public:
   // A new summation into matrix m (its entries not yet set).
   void start(const CsrMatrix& m);
-  // Sums the triplets of rows first .. last - 1 in the count parts into m; false when a triplet falls outside m's pattern or
-  // some entry of those rows gets none (the pattern changed). Rows of different calls may be summed on
-  // different threads.
+  // Sums the triplets of rows first .. last - 1 in the count parts into m; false when a triplet falls
+  // outside m's pattern or some entry of those rows gets none (the pattern changed). Rows of different calls
+  // may be summed on different threads.
   bool sum_rows(CsrMatrix& m, int first, int last, const std::vector<Triplet>* parts, std::size_t count);
 
  private:
