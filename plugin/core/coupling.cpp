@@ -216,12 +216,13 @@ const CsrMatrix& CouplingAssembly::assemble_checked(const FluidSide& fluid, cons
                             total.solid_degree, product};
   // Threads only where no evaluation goes back to the caller's Basis or map (they need not be thread-safe).
   const bool parallel = fluid.basis().fitted() && solid.basis().fitted() && map.degree() >= 1;
-  const int threads = parallel ? std::max(1, std::min(opt.threads, 64)) : 1;
+  const int requested = std::max(1, std::min(opt.threads, 64));
+  const int threads = parallel ? requested : 1;
   while (static_cast<int>(threads_.size()) < threads) threads_.push_back(std::make_unique<Thread>());
   // The compression's row ranges (one per requested thread: it touches neither the caller's Basis nor the
   // map), and the triplet lists: thread t's triplets of range r in triplets_[r * threads + t].
   const int rows = solid.space().dof_count();
-  const RowRanges ranges{rows, std::max(1, std::min(std::max(1, std::min(opt.threads, 64)), rows))};
+  const RowRanges ranges{rows, std::max(1, std::min(requested, rows))};
   const size_t lists = static_cast<size_t>(threads) * ranges.n;
   if (triplets_.size() < lists) triplets_.resize(lists);
   // The map into the fluid side's scaled coordinates.
