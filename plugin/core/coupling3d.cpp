@@ -121,8 +121,7 @@ void check_options(const Basis3& fluid_space, const Basis3& multiplier, const Co
   if (opt.subdivide < -1 || opt.subdivide > 4)
     throw Error("subdivide=" + std::to_string(opt.subdivide) +
                 " out of range (0 to 4 in 3D, or -1 for the default: each curved solid tetrahedron is split "
-                "into 8^subdivide parts, at most 4096)");
-  if (opt.method != CouplingOptions::Method::Exact) throw Error("method=\"quadrature\" is 2D only; use \"exact\"");
+                "into 8^subdivide parts, at most 4096; the quadrature method splits every one, default 0)");
   if (!(opt.outside_tol >= 0)) throw Error("outsidetol=" + option_value(opt.outside_tol) + " must be a number >= 0");
   if (opt.threads < 1) throw Error("threads=" + std::to_string(opt.threads) + " must be at least 1");
   if (opt.parts < 1 || opt.part < 0 || opt.part >= opt.parts)

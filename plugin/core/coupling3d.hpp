@@ -86,7 +86,8 @@ class SolidSide3 {
 // not affine but keeps the faces planar (P1b: the bubble vanishes on faces), the pieces are still polyhedra
 // and the pull-back is Newton's, with a rule of degree qforder (by default chosen from the map's
 // nonlinearity for an error about 1e-12); curved images (P2 maps) are replaced by 8^subdivide straight
-// sub-tetrahedra (the pull-back still uses the true map). The quadrature method is 2D only.
+// sub-tetrahedra (the pull-back still uses the true map). The quadrature method (options.method):
+// quadrature_method3d.hpp.
 // Errors (Error): bad options or components, non-finite/inverted/flat map, a mapped solid outside the
 // fluid mesh by more than outside_tol of its volume (unless drop_outside).
 CsrMatrix assemble_coupling(const FluidSide3& fluid, const SolidSide3& solid, const SolidMap3& map,

@@ -16,8 +16,17 @@ PointIntegrator3::PointIntegrator3(const Integrand3& integrand, CouplingReport3&
       gradients_(integrand.c1 != 0), listing_(integrand.c1 != 0 && !integrand.chain), values_(integrand) {}
 
 double PointIntegrator3::integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) {
-  const MappedTet& mt = image.tetrahedron;
   const double volume = gather(image, kf, piece);
+  add_gathered(image.tetrahedron, kf, block);
+  return volume;
+}
+
+void PointIntegrator3::add_points(const MappedTet& mt, int kf, const PointData* points, int n, LocalBlock& block) {
+  points_.assign(points, points + n);
+  add_gathered(mt, kf, block);
+}
+
+void PointIntegrator3::add_gathered(const MappedTet& mt, int kf, LocalBlock& block) {
   const int n = static_cast<int>(points_.size());
   counts_.points += n;
   eta_.resize(static_cast<size_t>(n));
@@ -33,7 +42,6 @@ double PointIntegrator3::integrate(const ClippedImage3& image, int kf, const Pie
   weigh(mt, n, twins ? integrand_.pairs.fluid_read_by_sources() : integrand_.pairs.fluid_read());
   add_pairs(n, twins, block);
   if (listing_) add_listing(mt, n, block);
-  return volume;
 }
 
 double PointIntegrator3::gather(const ClippedImage3& image, int kf, const Piece3& piece) {

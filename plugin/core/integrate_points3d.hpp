@@ -22,12 +22,21 @@ class PointIntegrator3 : public PieceIntegrator3 {
   PointIntegrator3(const Integrand3& integrand, CouplingReport3& counts);
   double integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) override;
 
- private:
+  // A point of the solid tetrahedron whose image lies in fluid tetrahedron kf: reference coordinates in kf
+  // (eta) and in the solid tetrahedron (xi), its weight in solid measure (ds; a piece's points carry
+  // dy / det dX/ds, the same), and dX/ds there where the map is not affine.
   struct PointData {
     Point3 eta, xi;
     double weight;
-    std::array<double, 9> jac;  // dX/ds where the map is not affine
+    std::array<double, 9> jac;
   };
+  // Adds sum_q weight_q f_ij(point q) over points all in fluid tetrahedron kf (entered in the block by the
+  // caller): the quadrature method's way in (quadrature_method3d.hpp).
+  void add_points(const MappedTet& mt, int kf, const PointData* points, int n, LocalBlock& block);
+
+ private:
+  // Evaluates both bases on points_ (in kf) and adds the sums to the block.
+  void add_gathered(const MappedTet& mt, int kf, LocalBlock& block);
   // The rule's points on the piece's tetrahedra, into points_; returns the piece's volume.
   double gather(const ClippedImage3& image, int kf, const Piece3& piece);
   // Folds the weights (and the chain rule's jacobian) into the fluid functions read.

@@ -4,6 +4,7 @@
 #include "exact_method3d.hpp"
 #include "integrate_moments3d.hpp"
 #include "integrate_points3d.hpp"
+#include "quadrature_method3d.hpp"
 
 namespace dlmfsi {
 
@@ -19,6 +20,8 @@ Point3 ClippedImage3::guess(Point3 y) const {
 std::unique_ptr<TetrahedronIntegrator> choose_integrator(const Integrand3& integrand, const FluidSide3& fluid,
                                                          FluidSearch3& search, const CouplingOptions& options,
                                                          CouplingReport3& counts) {
+  if (options.method == CouplingOptions::Method::Quadrature)
+    return std::make_unique<QuadratureMethod3>(fluid, search, integrand, options.qforder, options.subdivide, counts);
   std::unique_ptr<PieceIntegrator3> affine;
   if (MomentIntegrator3::applies(integrand)) affine = std::make_unique<MomentIntegrator3>(integrand, counts);
   return std::make_unique<ExactMethod3>(fluid, search, integrand.product_degree, options.qforder, options.subdivide,

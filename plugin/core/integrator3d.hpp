@@ -2,6 +2,7 @@
 // clipped image of a solid tetrahedron, and the selection of the integrators.
 //
 // A TetrahedronIntegrator adds int_T f_ij ds over a solid tetrahedron T to the tetrahedron's LocalBlock: the
+// quadrature method (quadrature_method3d.hpp) sums a rule with each point located in the fluid, the
 // exact method (exact_method3d.hpp) clips T's image against the fluid and hands each piece to a
 // PieceIntegrator3: point by point through either basis and either gradient product (integrate_points3d.hpp),
 // or from the piece's moments for bases of degree <= 1 on affine images (integrate_moments3d.hpp).
@@ -45,7 +46,7 @@ class PieceIntegrator3 {
 };
 using TetrahedronIntegrator = ElementIntegratorOf<MappedTet>;
 
-// The exact method (the only one in 3D) with, for every piece, the point-by-point integrator, and for the
+// The quadrature method (quadrature_method3d.hpp) when the options ask for it; otherwise the exact method with, for every piece, the point-by-point integrator, and for the
 // pieces of affine images the moments where both bases are fitted, of degree <= 1, and the product is the
 // chain rule's (or c1 = 0). search: the calling thread's search on the fluid side; counts: its report.
 std::unique_ptr<TetrahedronIntegrator> choose_integrator(const Integrand3& integrand, const FluidSide3& fluid,

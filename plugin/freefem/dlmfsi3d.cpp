@@ -2,8 +2,8 @@
 //
 //   matrix B = dlmfsi(Vf, Vs, [X, Y, Z], c1=1, c2=10, fluid=[0,1,2], solid=[0,1,2]);  // rows Vs, columns Vf
 //
-// The contract and the named parameters are those of the 2D function (dlmfsi.cpp); method="quadrature"
-// is 2D only. It converts FreeFEM's mesh3 and FESpace3 into the core's arrays and Basis3 evaluators (the
+// The contract and the named parameters are those of the 2D function (dlmfsi.cpp), but for tol= (2D's
+// adaptive quadrature leaves; in 3D method="quadrature" refines uniformly, subdivide=). It converts FreeFEM's mesh3 and FESpace3 into the core's arrays and Basis3 evaluators (the
 // element's own basis functions, so any 3D element works), calls dlmfsi::assemble_coupling (coupling3d),
 // and turns every C++ exception into a FreeFEM ExecError that a script can catch.
 #include "ff++.hpp"
@@ -126,8 +126,12 @@ dlmfsi::CouplingOptions Dlmfsi3Op::options(Stack stack) const {
     o.parts = part[1];
   }
   const std::string method = named.text(Args::kMethod, stack, "exact");
-  if (method == "quadrature") throw dlmfsi::Error("method=\"quadrature\" is 2D only; on mesh3 spaces use \"exact\"");
-  if (method != "exact") throw dlmfsi::Error("method=\"" + method + "\": expected \"exact\" or \"quadrature\"");
+  if (method != "exact" && method != "quadrature")
+    throw dlmfsi::Error("method=\"" + method + "\": expected \"exact\" or \"quadrature\"");
+  if (method == "quadrature") o.method = Options::Method::Quadrature;
+  // 2D's adaptive leaves (tol) have no 3D counterpart: there the rule is refined uniformly (subdivide=)
+  if (named.given(Args::kTol))
+    throw dlmfsi::Error("tol= is 2D only; on mesh3 spaces method=\"quadrature\" refines its rule with subdivide= (0 to 4)");
   o.gradient = named.gradient(stack);
   // Given values are range-checked before they become ints.
   const long qforder = named.arg(Args::kQforder, stack, -1L), subdivide = named.arg(Args::kSubdivide, stack, -1L),
@@ -136,10 +140,10 @@ dlmfsi::CouplingOptions Dlmfsi3Op::options(Stack stack) const {
     throw dlmfsi::Error("qforder=" + std::to_string(qforder) + " out of range (0 to 40 in 3D, or -1 for the automatic choice)");
   if (subdivide < -1 || subdivide > 4)
     throw dlmfsi::Error("subdivide=" + std::to_string(subdivide) +
-                        " out of range (0 to 4 in 3D, or -1 for the default: 8^subdivide parts per curved tetrahedron)");
+                        " out of range (0 to 4 in 3D, or -1 for the default: 8^subdivide parts per curved tetrahedron; "
+                        "with method=\"quadrature\", 8^subdivide parts of every tetrahedron, default 0)");
   if (threads < 1 || threads > 1024) throw dlmfsi::Error("threads=" + std::to_string(threads) + " must lie in 1 .. 1024");
   o.qforder = static_cast<int>(qforder);
-  o.tol = named.arg(Args::kTol, stack, o.tol);
   o.subdivide = static_cast<int>(subdivide);
   o.drop_outside = named.drop_outside(stack);
   o.outside_tol = named.arg(Args::kOutsideTol, stack, o.outside_tol);
