@@ -259,6 +259,11 @@ std::string factor_and_solve(Kept& k, bool analyse, bool factor, std::vector<dou
   }
   if (factor) {
     k.factored = false;
+    // MUMPS reads the triplets again at every factorization (distributed input): point at the kept arrays,
+    // which a call with new values but the same pattern has replaced (the analysis's arrays are gone then).
+    k.m.nnz_loc = static_cast<MUMPS_INT8>(k.rows.size());
+    k.m.irn_loc = k.rows.data();
+    k.m.jcn_loc = k.cols.data();
     k.m.a_loc = k.values.data();
     PhaseClock c;
     for (int attempt = 0;; ++attempt) {
