@@ -69,6 +69,20 @@ double reference(const Mesh3& solid, const AffineMap3& map, const double a[3][3]
   return s;
 }
 
+// A rotation by 0.83 about (1, 2, 3) after a shear: the affine part of the polynomial tests' map.
+void rotated_shear(double a[3][3]) {
+  double r[3][3];
+  rotation({1, 2, 3}, 0.83, r);
+  const double shear[3][3] = {{1, 0.3, 0}, {0, 1.1, 0.2}, {0.1, 0, 0.9}};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) a[i][j] = r[i][0] * shear[0][j] + r[i][1] * shear[1][j] + r[i][2] * shear[2][j];
+}
+// Quadratic data in the fluid (u2) and in the solid (l2), with their gradients.
+const Field u2 = [](Point3 y) { return 1 + 0.3 * y.x - 0.7 * y.y + 0.2 * y.z + y.x * y.y - 0.5 * y.z * y.z + 0.4 * y.x * y.x; };
+const Gradient gu2 = [](Point3 y) { return Point3{0.3 + y.y + 0.8 * y.x, -0.7 + y.x, 0.2 - y.z}; };
+const Field l2 = [](Point3 s) { return 1 + s.x * s.z - 0.3 * s.y * s.y; };
+const Gradient gl2 = [](Point3 s) { return Point3{s.z, -0.6 * s.y, s.x}; };
+
 template <class Space>
 std::vector<double> interpolate(const Space& space, const Field& f) {
   std::vector<double> v(space.dof_count());
@@ -107,21 +121,14 @@ TEST(Coupling3d, VolumeOnFluidMeshesContainingTheSolidBoundary) {
 TEST(Coupling3d, PolynomialExactnessUnderRotatedShearedMaps) {
   const Mesh3 fluid = box_mesh(5, 5, 5, {-1, -1, -1}, {2, 2, 2}, 0.25, 3);
   const Mesh3 solid = box_mesh(3, 2, 4, {-0.3, -0.3, -0.3}, {0.6, 0.6, 0.6}, 0.2, 4);
-  double r[3][3], a[3][3];
-  rotation({1, 2, 3}, 0.83, r);
-  const double shear[3][3] = {{1, 0.3, 0}, {0, 1.1, 0.2}, {0.1, 0, 0.9}};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) a[i][j] = r[i][0] * shear[0][j] + r[i][1] * shear[1][j] + r[i][2] * shear[2][j];
+  double a[3][3];
+  rotated_shear(a);
   const AffineMap3 map(solid, a, {0.05, -0.1, 0.07});
-  // U quadratic in the fluid, L linear (or quadratic) in the solid
-  const Field u2 = [](Point3 y) { return 1 + 0.3 * y.x - 0.7 * y.y + 0.2 * y.z + y.x * y.y - 0.5 * y.z * y.z + 0.4 * y.x * y.x; };
-  const Gradient gu2 = [](Point3 y) { return Point3{0.3 + y.y + 0.8 * y.x, -0.7 + y.x, 0.2 - y.z}; };
+  // U quadratic (u2) or linear in the fluid, L linear or quadratic (l2) in the solid
   const Field u1 = [](Point3 y) { return 0.5 - 0.2 * y.x + 0.9 * y.y + 0.6 * y.z; };
   const Gradient gu1 = [](Point3) { return Point3{-0.2, 0.9, 0.6}; };
   const Field l1 = [](Point3 s) { return 2 - s.x + 0.5 * s.y + 0.25 * s.z; };
   const Gradient gl1 = [](Point3) { return Point3{-1, 0.5, 0.25}; };
-  const Field l2 = [](Point3 s) { return 1 + s.x * s.z - 0.3 * s.y * s.y; };
-  const Gradient gl2 = [](Point3 s) { return Point3{s.z, -0.6 * s.y, s.x}; };
   const P1Tet fp1(fluid), sp1(solid);
   const P2Tet fp2(fluid), sp2(solid);
   struct Case {
@@ -223,7 +230,7 @@ TEST(Coupling3d, VectorSpacesChainAndListingGradients) {
   EXPECT_NEAR(bilinear(assemble_coupling(fs, ss, map, opt), lv, uv), listing * volume, 1e-13 * std::fabs(listing * volume));
 }
 
-TEST(Coupling3d, ThreadsGiveTheSameMatrix) {
+TEST(Coupling3d, ThreadsGiveTheSameMatrixBothMethods) {
   const Mesh3 fluid = box_mesh(4, 4, 4, {-1, -1, -1}, {2, 2, 2}, 0.2, 13);
   const Mesh3 solid = box_mesh(3, 3, 3, {-0.5, -0.5, -0.5}, {1, 1, 1}, 0.2, 14);
   double a[3][3];
@@ -231,10 +238,12 @@ TEST(Coupling3d, ThreadsGiveTheSameMatrix) {
   const AffineMap3 map(solid, a, {0, 0.05, 0});
   const P2Tet f(fluid);
   const P1Tet s(solid);
-  const CsrMatrix one = couple(fluid, f, solid, s, map, 1, 1, nullptr, 1);
-  const CsrMatrix two = couple(fluid, f, solid, s, map, 1, 1, nullptr, 2);
-  EXPECT_EQ(one.column, two.column);
-  EXPECT_EQ(one.value, two.value);
+  for (auto method : {CouplingOptions::Method::Exact, CouplingOptions::Method::Quadrature}) {
+    const CsrMatrix one = couple(fluid, f, solid, s, map, 1, 1, nullptr, 1, {0}, {0}, method);
+    const CsrMatrix two = couple(fluid, f, solid, s, map, 1, 1, nullptr, 2, {0}, {0}, method);
+    EXPECT_EQ(one.column, two.column);
+    EXPECT_EQ(one.value, two.value);
+  }
 }
 
 // The quadrature method on data that is one polynomial over the whole fluid mesh (no kinks): its rule, of
@@ -243,16 +252,9 @@ TEST(Coupling3d, ThreadsGiveTheSameMatrix) {
 TEST(Coupling3dQuadrature, ExactOnGlobalPolynomialsUnderRotatedShearedMaps) {
   const Mesh3 fluid = box_mesh(5, 5, 5, {-1, -1, -1}, {2, 2, 2}, 0.25, 3);
   const Mesh3 solid = box_mesh(3, 2, 4, {-0.3, -0.3, -0.3}, {0.6, 0.6, 0.6}, 0.2, 4);
-  double r[3][3], a[3][3];
-  rotation({1, 2, 3}, 0.83, r);
-  const double shear[3][3] = {{1, 0.3, 0}, {0, 1.1, 0.2}, {0.1, 0, 0.9}};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) a[i][j] = r[i][0] * shear[0][j] + r[i][1] * shear[1][j] + r[i][2] * shear[2][j];
+  double a[3][3];
+  rotated_shear(a);
   const AffineMap3 map(solid, a, {0.05, -0.1, 0.07});
-  const Field u2 = [](Point3 y) { return 1 + 0.3 * y.x - 0.7 * y.y + 0.2 * y.z + y.x * y.y - 0.5 * y.z * y.z + 0.4 * y.x * y.x; };
-  const Gradient gu2 = [](Point3 y) { return Point3{0.3 + y.y + 0.8 * y.x, -0.7 + y.x, 0.2 - y.z}; };
-  const Field l2 = [](Point3 s) { return 1 + s.x * s.z - 0.3 * s.y * s.y; };
-  const Gradient gl2 = [](Point3 s) { return Point3{s.z, -0.6 * s.y, s.x}; };
   const P2Tet fp2(fluid), sp2(solid);
   const P1Tet fp1(fluid);
   const std::vector<double> uv = interpolate(fp2, u2), lv = interpolate(sp2, l2);
@@ -300,21 +302,6 @@ TEST(Coupling3dQuadrature, PointsOutsideTheFluidAreAnErrorOrDropped) {
   assemble_coupling(fs, ss, out, opt, &report);
   EXPECT_GT(report.outside_volume, 0.2 * exact_volume(solid));
   EXPECT_LT(report.outside_volume, 0.8 * exact_volume(solid));
-}
-
-TEST(Coupling3dQuadrature, ThreadsGiveTheSameMatrix) {
-  const Mesh3 fluid = box_mesh(4, 4, 4, {-1, -1, -1}, {2, 2, 2}, 0.2, 13);
-  const Mesh3 solid = box_mesh(3, 3, 3, {-0.5, -0.5, -0.5}, {1, 1, 1}, 0.2, 14);
-  double a[3][3];
-  rotation({1, 0, 1}, 0.3, a);
-  const AffineMap3 map(solid, a, {0, 0.05, 0});
-  const P2Tet f(fluid);
-  const P1Tet s(solid);
-  const auto q = CouplingOptions::Method::Quadrature;
-  const CsrMatrix one = couple(fluid, f, solid, s, map, 1, 1, nullptr, 1, {0}, {0}, q);
-  const CsrMatrix two = couple(fluid, f, solid, s, map, 1, 1, nullptr, 2, {0}, {0}, q);
-  EXPECT_EQ(one.column, two.column);
-  EXPECT_EQ(one.value, two.value);
 }
 
 TEST(Coupling3d, BadInputIsAnError) {
