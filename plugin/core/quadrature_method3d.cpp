@@ -40,13 +40,11 @@ double QuadratureMethod3::integrate(const MappedTet& mt, LocalBlock& block) {
         for (int a = 0; a < 3; ++a)
           for (int b = 0; b < 3; ++b) p.point.jac[3 * a + b] = mv.jac[a][b];
       }
-      p.kf = search_.locate(y, hint_);
+      p.kf = find(y, p.point.eta);
       if (p.kf < 0) {
         outside += p.point.weight * det;  // image volume
         continue;
       }
-      hint_ = p.kf;
-      p.point.eta = integrand_.fluid.to_reference(p.kf, y);
       located_.push_back(p);
     }
   }
@@ -62,6 +60,31 @@ double QuadratureMethod3::integrate(const MappedTet& mt, LocalBlock& block) {
     i = j;
   }
   return outside;
+}
+
+int QuadratureMethod3::find(Point3 y, Point3& eta) {
+  // A walk on the fluid's affine frames from the last point's tetrahedron: where all barycentric coordinates
+  // (1 - sum eta, eta) exceed kMargin, y lies strictly inside (the frames' round-off, about
+  // eps * cond(E) * |x| / diam, stays far below kMargin for any usable mesh), and no other tetrahedron holds
+  // it; where the most negative one is below -kMargin, step across that face. Near a face (or a boundary, or
+  // after many steps) the exact walk decides (FluidSearch3::locate: exact orient3d signs).
+  constexpr double kMargin = 1e-6;
+  const Mesh3& mesh = fluid_.mesh();
+  int k = hint_;
+  for (int step = 0; step < 64; ++step) {
+    eta = integrand_.fluid.to_reference(k, y);
+    const double lambda[4] = {1 - eta.x - eta.y - eta.z, eta.x, eta.y, eta.z};
+    int low = 0;
+    for (int i = 1; i < 4; ++i)
+      if (lambda[i] < lambda[low]) low = i;
+    if (lambda[low] > kMargin) return hint_ = k;
+    if (lambda[low] > -kMargin || mesh.neighbours[k][low] < 0) break;
+    k = mesh.neighbours[k][low];
+  }
+  const int kf = search_.locate(y, k);
+  if (kf < 0) return -1;
+  eta = integrand_.fluid.to_reference(kf, y);
+  return hint_ = kf;
 }
 
 int QuadratureMethod3::rule_degree(const MappedTet& mt) {

@@ -25,6 +25,8 @@ class QuadratureMethod3 : public TetrahedronIntegrator {
 
  private:
   int rule_degree(const MappedTet& mt);
+  // The fluid tetrahedron holding y (-1: outside the fluid mesh) and y's reference coordinates there.
+  int find(Point3 y, Point3& eta);
 
   struct Located {
     int kf;

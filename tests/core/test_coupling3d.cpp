@@ -287,6 +287,40 @@ TEST(Coupling3dQuadrature, ExactOnGlobalPolynomialsUnderRotatedShearedMaps) {
   EXPECT_LT(std::fabs(quad - exact), 1e-2 * std::fabs(exact));
 }
 
+// Rule points on the fluid's vertices, edges and faces (the walk's exact fallback decides): the centroid
+// rule (qforder 0) on one solid tetrahedron whose centroid is the fluid box's middle vertex (0.5, 0.5, 0.5),
+// shared by many fluid tetrahedra (to round-off: within the walk's margin), and the same under subdivide 1,
+// one of whose parts' centroids, (0.45, 0.7, 0.5), lies on the fluid's grid plane z = 0.5. Data linear over
+// the whole fluid: every tetrahedron holding a point gives the same value.
+TEST(Coupling3dQuadrature, RulePointsOnFluidVerticesEdgesAndFaces) {
+  const Mesh3 fluid = box_mesh(2, 2, 2, {0, 0, 0}, {1, 1, 1});
+  Mesh3 solid;
+  solid.vertices = {{0.1, 0.2, 0.3}, {0.9, 0.3, 0.4}, {0.4, 0.9, 0.5}, {0.6, 0.6, 0.8}};
+  solid.tetrahedra = {{0, 1, 2, 3}};
+  solid.build_adjacency();
+  const P1Tet f(fluid), s(solid);
+  const Field u = [](Point3 y) { return 0.5 - 0.2 * y.x + 0.9 * y.y + 0.6 * y.z; };
+  const std::vector<double> uv = interpolate(f, u), lv(4, 1.0);
+  const FluidSide3 fs(fluid, f, {0});
+  const SolidSide3 ss(solid, s, {0});
+  const AffineMap3 identity(solid, kIdentity, {0, 0, 0});
+  Point3 c[4];
+  solid.corners(0, c);
+  const double volume = std::fabs(volume6(c[0], c[1], c[2], c[3])) / 6;
+  for (int subdivide : {0, 1}) {
+    CouplingOptions opt;
+    opt.method = CouplingOptions::Method::Quadrature;
+    opt.qforder = 0;
+    opt.c1 = 0;
+    opt.subdivide = subdivide;
+    CouplingReport3 report;
+    const double value = bilinear(assemble_coupling(fs, ss, identity, opt, &report), lv, uv);
+    // the centroid rule is exact for linear data on each part, and the parts tile the tetrahedron
+    EXPECT_NEAR(value, volume * u(0.25 * (c[0] + c[1] + c[2] + c[3])), 1e-14) << "subdivide " << subdivide;
+    EXPECT_EQ(report.outside_volume, 0);
+  }
+}
+
 TEST(Coupling3dQuadrature, PointsOutsideTheFluidAreAnErrorOrDropped) {
   const Mesh3 fluid = box_mesh(3, 3, 3, {0, 0, 0}, {1, 1, 1}, 0.1, 5);
   const Mesh3 solid = box_mesh(2, 2, 2, {0.25, 0.25, 0.25}, {0.5, 0.5, 0.5}, 0.1, 6);
