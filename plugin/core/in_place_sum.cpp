@@ -7,7 +7,9 @@
 
 namespace dlmfsi {
 
-void InPlaceSum::start(const CsrMatrix& m) {
+void InPlaceSum::start(CsrMatrix& m) {
+  m_ = &m;
+  added_ = 0;
   room(stamp_, m.column.size());
   if (stamp_.size() < m.column.size()) stamp_.resize(m.column.size(), 0u);
   if (++stamp_value_ == 0) {  // wrapped: clear the stamps
@@ -16,7 +18,8 @@ void InPlaceSum::start(const CsrMatrix& m) {
   }
 }
 
-bool InPlaceSum::sum_rows(CsrMatrix& m, int first, int last, const std::vector<Triplet>* parts, std::size_t count) {
+bool InPlaceSum::sum_rows(int first, int last, const std::vector<Triplet>* parts, std::size_t count) {
+  CsrMatrix& m = *m_;
   size_t covered = 0;  // entries set
   for (const std::vector<Triplet>* p = parts; p != parts + count; ++p)
     for (const Triplet& t : *p) {

@@ -44,4 +44,18 @@ void LocalBlock::scatter(std::vector<Triplet>* const* out, const RowRanges& rang
   }
 }
 
+void LocalBlock::scatter(InPlaceSum& sum, std::vector<Triplet>& misses) {
+  const size_t columns = column_dofs_.size();
+  for (int i : used_rows_) {
+    const int row = row_dofs_[i];
+    const InPlaceSum::Row on_pattern = sum.row(row);
+    double* entry = &entries_[i];
+    for (size_t c = 0; c < columns; ++c, entry += rows_) {
+      if (*entry == 0.0) continue;
+      if (!sum.add(on_pattern, column_dofs_[c], *entry)) misses.push_back({row, column_dofs_[c], *entry});
+      *entry = 0.0;
+    }
+  }
+}
+
 }  // namespace dlmfsi

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "in_place_sum.hpp"
 #include "sparse.hpp"
 
 namespace dlmfsi {
@@ -43,6 +44,10 @@ class LocalBlock {
   void scatter(std::vector<Triplet>& out);
   // The same, each row's triplets appended to out[ranges.of(row)] (CsrBuilder::build_by_range).
   void scatter(std::vector<Triplet>* const* out, const RowRanges& ranges);
+
+  // The same entries, in the same order, added to the summation on the last call's pattern where they are
+  // on it (CsrBuilder::sum_on_last_pattern), the others appended to misses.
+  void scatter(InPlaceSum& sum, std::vector<Triplet>& misses);
 
   // Entries of one solid element for each used row and fluid column: an estimate of the triplets.
   size_t used_entries_per_fluid_element() const { return used_rows_.size() * used_fluid_dofs_.size(); }
