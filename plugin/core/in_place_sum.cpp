@@ -10,12 +10,8 @@ namespace dlmfsi {
 void InPlaceSum::start(CsrMatrix& m) {
   m_ = &m;
   added_ = 0;
-  room(stamp_, m.column.size());
-  if (stamp_.size() < m.column.size()) stamp_.resize(m.column.size(), 0u);
-  if (++stamp_value_ == 0) {  // wrapped: clear the stamps
-    std::fill(stamp_.begin(), stamp_.end(), 0u);
-    stamp_value_ = 1;
-  }
+  room(flag_, m.column.size());
+  flag_.assign(m.column.size(), Flag::unset);
 }
 
 bool InPlaceSum::sum_rows(int first, int last, const std::vector<Triplet>* parts, std::size_t count) {
@@ -29,10 +25,10 @@ bool InPlaceSum::sum_rows(int first, int last, const std::vector<Triplet>* parts
       const int* at = std::lower_bound(b, e, t.col);
       if (at == e || *at != t.col) return false;  // a new entry: the pattern changed
       const size_t k = static_cast<size_t>(at - m.column.data());
-      if (stamp_[k] == stamp_value_) {
+      if (flag_[k] == Flag::set) {
         m.value[k] += t.value;
       } else {
-        stamp_[k] = stamp_value_;
+        flag_[k] = Flag::set;
         m.value[k] = t.value;
         ++covered;
       }

@@ -9,8 +9,9 @@
 namespace dlmfsi {
 
 // The first triplet of an entry sets it and the others add to it, in the order given (the parts in order,
-// each in its order), as CompressedRows sums them: the same values bit for bit. Each entry carries the stamp
-// of the last summation that set it, so that no pass over the values is needed to clear them.
+// each in its order), as CompressedRows sums them: the same values bit for bit. A byte per entry tells
+// whether this summation has set it (one byte, not one bit, so that threads summing different rows never
+// write the same byte; small next to the values, so that it stays in cache).
 class InPlaceSum {
  public:
   // A new summation into matrix m (its entries not yet set); add and set refer to m until the next start.
@@ -20,39 +21,45 @@ class InPlaceSum {
   // may be summed on different threads.
   bool sum_rows(int first, int last, const std::vector<Triplet>* parts, std::size_t count);
 
-  // Entry by entry (one thread): the columns of row i of m, then (i, col) set to v, or v added to it when
-  // this summation set it already; false, and nothing done, when m has no entry (i, col).
+  // Entry by entry (one thread): row i of m, its columns (increasing) with their values and flags, then
+  // (i, col) set to v, or v added to it when this summation set it already; false, and nothing done, when m
+  // has no entry (i, col).
+  enum class Flag : unsigned char { unset, set };  // not a char type: its stores alias no other data
   struct Row {
     const int* begin;
     const int* end;
+    double* value;  // value[j]: of the entry whose column is begin[j]
+    Flag* flag;
   };
-  Row row(int i) const { return {m_->column.data() + m_->start[i], m_->column.data() + m_->start[i + 1]}; }
+  Row row(int i) {
+    const size_t first = m_->start[i], last = m_->start[i + 1];
+    return {m_->column.data() + first, m_->column.data() + last, m_->value.data() + first, flag_.data() + first};
+  }
   bool add(const Row& row, int col, double v) {
     const int* at = std::lower_bound(row.begin, row.end, col);
     if (at == row.end || *at != col) return false;
-    add_at(static_cast<size_t>(at - m_->column.data()), v);
+    add_at(row, at, v);
     return true;
+  }
+  // The same at the entry of the row whose column is *at.
+  void add_at(const Row& row, const int* at, double v) {
+    const size_t j = static_cast<size_t>(at - row.begin);
+    if (row.flag[j] == Flag::set) {
+      row.value[j] += v;
+      return;
+    }
+    row.flag[j] = Flag::set;
+    row.value[j] = v;
+    ++added_;
   }
   // The entries add has set so far in this summation.
   size_t added() const { return added_; }
   // Was entry k of m set in this summation?
-  bool set(size_t k) const { return stamp_[k] == stamp_value_; }
+  bool set(size_t k) const { return flag_[k] == Flag::set; }
 
  private:
-  // Adds v to entry k, or sets it to v when this summation has not set it yet.
-  void add_at(size_t k, double v) {
-    if (stamp_[k] == stamp_value_) {
-      m_->value[k] += v;
-      return;
-    }
-    stamp_[k] = stamp_value_;
-    m_->value[k] = v;
-    ++added_;
-  }
-
   CsrMatrix* m_ = nullptr;
-  std::vector<unsigned> stamp_;  // per entry: the summation that last set it
-  unsigned stamp_value_ = 0;
+  std::vector<Flag> flag_;  // per entry of m: set in this summation?
   size_t added_ = 0;
 };
 

@@ -58,6 +58,7 @@ class LocalBlock {
   std::vector<int> row_dofs_;     // global multiplier dof of each row
   std::vector<int> column_dofs_;  // global fluid dof of each column
   std::vector<int> column_of_;    // per local fluid dof of the element entered last: its column
+  std::vector<int> by_dof_;       // scatter(InPlaceSum&, ...): the columns by increasing dof
   // Column-major, rows_ per column, and spare room for more columns; zero outside the current element's
   // columns (scatter clears what it reads), so that a new column starts at zero.
   std::vector<double> entries_;
