@@ -9,9 +9,17 @@ namespace dlmfsi {
 
 void InPlaceSum::start(CsrMatrix& m) {
   m_ = &m;
-  added_ = 0;
   room(flag_, m.column.size());
   flag_.assign(m.column.size(), Flag::unset);
+}
+
+void InPlaceSum::start_at_zero(CsrMatrix& m) {
+  start(m);
+  std::fill(m.value.begin(), m.value.end(), 0.0);
+}
+
+size_t InPlaceSum::count_set() const {
+  return static_cast<size_t>(std::count(flag_.begin(), flag_.end(), Flag::set));
 }
 
 bool InPlaceSum::sum_rows(int first, int last, const std::vector<Triplet>* parts, std::size_t count) {

@@ -21,9 +21,10 @@ class InPlaceSum {
   // may be summed on different threads.
   bool sum_rows(int first, int last, const std::vector<Triplet>* parts, std::size_t count);
 
-  // Entry by entry (one thread): row i of m, its columns (increasing) with their values and flags, then
-  // (i, col) set to v, or v added to it when this summation set it already; false, and nothing done, when m
-  // has no entry (i, col).
+  // Entry by entry (one thread), after start_at_zero: row i of m, its columns (increasing) with their
+  // values and flags, then v added to entry (i, col), flagged set; false, and nothing done, when m has no
+  // entry (i, col). Adding to a zero is setting: 0 + v is v bit for bit (v != 0: zeros are not added), so
+  // that the sums are those above, without a branch on the flag.
   enum class Flag : unsigned char { unset, set };  // not a char type: its stores alias no other data
   struct Row {
     const int* begin;
@@ -31,9 +32,18 @@ class InPlaceSum {
     double* value;  // value[j]: of the entry whose column is begin[j]
     Flag* flag;
   };
+  void start_at_zero(CsrMatrix& m);
   Row row(int i) {
     const size_t first = m_->start[i], last = m_->start[i + 1];
     return {m_->column.data() + first, m_->column.data() + last, m_->value.data() + first, flag_.data() + first};
+  }
+  // A hint: row i's entries brought towards the cache, ahead of their use (an element's rows while its
+  // pieces are integrated), since rows come in the solid's order, not the matrix's.
+  void prefetch(int i) const {
+    const size_t first = m_->start[i];
+    __builtin_prefetch(m_->column.data() + first);
+    __builtin_prefetch(m_->value.data() + first, 1);
+    __builtin_prefetch(flag_.data() + first, 1);
   }
   bool add(const Row& row, int col, double v) {
     const int* at = std::lower_bound(row.begin, row.end, col);
@@ -42,25 +52,19 @@ class InPlaceSum {
     return true;
   }
   // The same at the entry of the row whose column is *at.
-  void add_at(const Row& row, const int* at, double v) {
+  static void add_at(const Row& row, const int* at, double v) {
     const size_t j = static_cast<size_t>(at - row.begin);
-    if (row.flag[j] == Flag::set) {
-      row.value[j] += v;
-      return;
-    }
+    row.value[j] += v;
     row.flag[j] = Flag::set;
-    row.value[j] = v;
-    ++added_;
   }
-  // The entries add has set so far in this summation.
-  size_t added() const { return added_; }
   // Was entry k of m set in this summation?
   bool set(size_t k) const { return flag_[k] == Flag::set; }
+  // The entries set in this summation.
+  size_t count_set() const;
 
  private:
   CsrMatrix* m_ = nullptr;
   std::vector<Flag> flag_;  // per entry of m: set in this summation?
-  size_t added_ = 0;
 };
 
 }  // namespace dlmfsi

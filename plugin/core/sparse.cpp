@@ -80,13 +80,14 @@ const CsrMatrix& CsrBuilder::build_ranges(int rows, int cols, int n, std::size_t
 InPlaceSum* CsrBuilder::sum_on_last_pattern(int rows, int cols) {
   CsrMatrix& m = matrix_;
   if (m.rows != rows || m.cols != cols || m.start.size() != static_cast<size_t>(rows) + 1) return nullptr;
-  in_place_sum_.start(m);
+  in_place_sum_.start_at_zero(m);
   return &in_place_sum_;
 }
 
 const CsrMatrix& CsrBuilder::build_on_last_pattern(const std::vector<Triplet>& misses) {
   CsrMatrix& m = matrix_;
-  kept_pattern_ = misses.empty() && in_place_sum_.added() == m.column.size();
+  const size_t set = in_place_sum_.count_set();
+  kept_pattern_ = misses.empty() && set == m.column.size();
   if (kept_pattern_) return m;
   if (ranges_.empty()) ranges_.push_back(std::make_unique<CompressedRows>());
   CompressedRows& r = *ranges_[0];
@@ -96,7 +97,7 @@ const CsrMatrix& CsrBuilder::build_on_last_pattern(const std::vector<Triplet>& m
   // Row by row, the set entries of the last pattern and the misses' entries merged by column (no column is
   // in both: a miss is an entry outside the last pattern).
   CsrMatrix& out = merged_;
-  const size_t size = in_place_sum_.added() + r.column.size();
+  const size_t size = set + r.column.size();
   room(out.column, size);
   room(out.value, size);
   out.column.resize(size);
