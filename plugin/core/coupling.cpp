@@ -74,7 +74,6 @@ class Assembler {
     MappedTriangle mt;
     mt.prepare(solid_.mesh(), map_, ks);
     block_.start(solid_.dofs(ks));
-    if (in_place_) block_.prefetch(*in_place_);
     ++report.solid_triangles;
     (mt.affine ? report.affine : (mt.straight ? report.straight : report.curved))++;
     const double image_area = 0.5 * area2(mt.image[0], mt.image[1], mt.image[2]);

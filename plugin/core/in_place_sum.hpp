@@ -37,14 +37,6 @@ class InPlaceSum {
     const size_t first = m_->start[i], last = m_->start[i + 1];
     return {m_->column.data() + first, m_->column.data() + last, m_->value.data() + first, flag_.data() + first};
   }
-  // A hint: row i's entries brought towards the cache, ahead of their use (an element's rows while its
-  // pieces are integrated), since rows come in the solid's order, not the matrix's.
-  void prefetch(int i) const {
-    const size_t first = m_->start[i];
-    __builtin_prefetch(m_->column.data() + first);
-    __builtin_prefetch(m_->value.data() + first, 1);
-    __builtin_prefetch(flag_.data() + first, 1);
-  }
   bool add(const Row& row, int col, double v) {
     const int* at = std::lower_bound(row.begin, row.end, col);
     if (at == row.end || *at != col) return false;

@@ -48,10 +48,6 @@ class LocalBlock {
   // The same entries, in the same order, added to the summation on the last call's pattern where they are
   // on it (CsrBuilder::sum_on_last_pattern), the others appended to misses.
   void scatter(InPlaceSum& sum, std::vector<Triplet>& misses);
-  // The rows' entries in sum's matrix brought towards the cache (InPlaceSum::prefetch), once started.
-  void prefetch(const InPlaceSum& sum) const {
-    for (int i : used_rows_) sum.prefetch(row_dofs_[i]);
-  }
 
   // Entries of one solid element for each used row and fluid column: an estimate of the triplets.
   size_t used_entries_per_fluid_element() const { return used_rows_.size() * used_fluid_dofs_.size(); }
