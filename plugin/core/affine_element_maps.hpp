@@ -15,6 +15,8 @@ class AffineElementMaps {
   // d xi / d x on element k, row by row: dxi1/dx, dxi1/dy, dxi2/dx, dxi2/dy.
   const double* inverse_jacobian(int k) const { return &inverse_jacobian_[4 * static_cast<size_t>(k)]; }
 
+  void prefetch(int k) const { __builtin_prefetch(inverse_jacobian(k)); }
+
   // The reference coordinates of point x in element k.
   Point to_reference(int k, Point x) const {
     const double* j = inverse_jacobian(k);

@@ -32,6 +32,7 @@ class BasisFit {
   // Does element k use the shared fit? There, function f equals function twin(f) (an earlier one, with the
   // same coefficients bit for bit) when twin(f) >= 0: the components of a vector space of one element.
   bool shared(int k) const { return slot_[k] < 0; }
+  void prefetch(int k) const { __builtin_prefetch(&slot_[k]); }
   int twin(int f) const { return twin_.empty() ? -1 : twin_[f]; }
   // Monomial coefficients (monomials() per function, in functions() order) on element k.
   const double* coefficients(int k) const { return slot_[k] < 0 ? reference_.data() : &own_[slot_[k]]; }

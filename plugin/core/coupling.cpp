@@ -32,13 +32,15 @@ std::string CouplingReport::summary() const {
 namespace {
 
 // One thread's share of one call: each solid triangle's block, integrated by the chosen TriangleIntegrator
-// and scattered to the thread's triplets, one list per row range of the compression (triplets[r]).
+// and scattered to the thread's triplets, one list per row range of the compression (triplets[r]); or,
+// with in_place (one thread), summed into the last call's matrix, the entries off its pattern appended to
+// triplets[0].
 class Assembler {
  public:
   Assembler(const Integrand& integrand, const FluidSide& fluid, const SolidSide& solid, const SolidMap& map,
             const CouplingOptions& options, const CouplingReport& degrees, FluidSearch& search,
-            std::vector<std::vector<Triplet>*> triplets, const RowRanges& ranges)
-      : solid_(solid), map_(map), triplets_(std::move(triplets)), ranges_(ranges),
+            std::vector<std::vector<Triplet>*> triplets, const RowRanges& ranges, InPlaceSum* in_place)
+      : solid_(solid), map_(map), triplets_(std::move(triplets)), ranges_(ranges), in_place_(in_place),
         block_(solid.space().local_dofs(), integrand.pairs.used_multiplier_dofs(), fluid.space().local_dofs(),
                integrand.pairs.used_fluid_dofs()) {
     report.fluid_degree = degrees.fluid_degree;
@@ -56,7 +58,13 @@ class Assembler {
       list->clear();
       list->reserve(room / triplets_.size());
     }
-    for (const int* k = first; k != last; ++k) solid_triangle(*k);
+    // The solid triangles come in Morton order, their data in the mesh's: a triangle's data is fetched
+    // ahead (four triangles ahead by its number, its corners two ahead), while the one before is integrated.
+    for (const int* k = first; k != last; ++k) {
+      if (last - k > 4) prefetch_numbered(k[4]);
+      if (last - k > 2) prefetch_corners(k[2]);
+      solid_triangle(*k);
+    }
   }
 
   CouplingReport report;  // this thread's counts (the integrators count in it too)
@@ -76,13 +84,28 @@ class Assembler {
       report.worst_outside = outside;
       report.worst_triangle = ks;
     }
-    block_.scatter(triplets_.data(), ranges_);
+    if (in_place_)
+      block_.scatter(*in_place_, *triplets_[0]);
+    else
+      block_.scatter(triplets_.data(), ranges_);
+  }
+
+  // Hints for the caches: the data of solid triangle k found by its number, and its corners.
+  void prefetch_numbered(int k) const {
+    __builtin_prefetch(&solid_.mesh().triangles[k]);
+    __builtin_prefetch(solid_.dofs(k));
+    solid_.basis().prefetch(k);
+    map_.prefetch(k);
+  }
+  void prefetch_corners(int k) const {
+    for (int v : solid_.mesh().triangles[k]) __builtin_prefetch(&solid_.mesh().vertices[v]);
   }
 
   const SolidSide& solid_;
   const SolidMap& map_;
   const std::vector<std::vector<Triplet>*> triplets_;
   const RowRanges ranges_;
+  InPlaceSum* const in_place_;
   LocalBlock block_;
   std::unique_ptr<TriangleIntegrator> integrator_;
 };
@@ -228,12 +251,16 @@ const CsrMatrix& CouplingAssembly::assemble_checked(const FluidSide& fluid, cons
   // The map into the fluid side's scaled coordinates.
   const ScaledMap scaled_map(map, fluid.scale());
   const SolidMap& fluid_map = fluid.scale() == 0 ? map : scaled_map;
+  // One thread sums straight into the last call's matrix (a time loop's pattern changes little), the
+  // entries off its pattern as triplets.
+  InPlaceSum* const in_place = threads == 1 ? matrix_.sum_on_last_pattern(rows, fluid.space().dof_count()) : nullptr;
   std::vector<std::unique_ptr<Assembler>> assemblers;
   for (int t = 0; t < threads; ++t) {
     std::vector<std::vector<Triplet>*> lists_of_t;
     for (int r = 0; r < ranges.n; ++r) lists_of_t.push_back(&triplets_[static_cast<size_t>(r) * threads + t]);
     assemblers.push_back(std::make_unique<Assembler>(integrand, fluid, solid, fluid_map, opt, total,
-                                                     threads_[t]->search_on(fluid), std::move(lists_of_t), ranges));
+                                                     threads_[t]->search_on(fluid), std::move(lists_of_t), ranges,
+                                                     in_place));
   }
   total.setup_seconds = seconds_since(start);
 
@@ -245,7 +272,8 @@ const CsrMatrix& CouplingAssembly::assemble_checked(const FluidSide& fluid, cons
 
   for (const auto& a : assemblers) add_counts(a->report, total);
   check_outside(opt, fluid.scale(), total);
-  const CsrMatrix& m = matrix_.build_by_range(ranges, fluid.space().dof_count(), triplets_.data(), threads);
+  const CsrMatrix& m = in_place ? matrix_.build_on_last_pattern(triplets_[0])
+                                : matrix_.build_by_range(ranges, fluid.space().dof_count(), triplets_.data(), threads);
   check_finite(m, opt);
   total.seconds = seconds_since(start);
   if (report) *report = total;

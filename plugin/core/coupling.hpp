@@ -63,7 +63,9 @@ CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const M
 // The assembly with its memory kept from call to call (grown, never shrunk), for a time loop that calls it
 // on the same sides with a moved map: each thread's triplets and search marks (kept while the fluid side
 // is the same), and the compressed rows with their buffers, whose values are summed in place when the
-// triplets fall on the last call's pattern (CsrBuilder). The result is assemble_coupling's, bit for bit.
+// triplets fall on the last call's pattern (CsrBuilder). On one thread the blocks are summed straight into
+// the last call's matrix where their entries lie on its pattern, and only the others become triplets
+// (CsrBuilder::sum_on_last_pattern). The result is assemble_coupling's, bit for bit.
 class CouplingAssembly {
  public:
   CouplingAssembly();

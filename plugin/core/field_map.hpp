@@ -26,6 +26,9 @@ class FieldMap : public SolidMap {
   MapValue evaluate(int k, Point xi) const override;
   int degree() const override { return degree_; }
   bool coefficients(int k, double* cx, double* cy) const override;
+  void prefetch(int k) const override {
+    if (!monomial_coef_.empty()) __builtin_prefetch(&monomial_coef_[static_cast<size_t>(k) * 2 * monomial_count(degree_)]);
+  }
 
  private:
   struct Part {

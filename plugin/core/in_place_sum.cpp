@@ -7,16 +7,23 @@
 
 namespace dlmfsi {
 
-void InPlaceSum::start(const CsrMatrix& m) {
-  room(stamp_, m.column.size());
-  if (stamp_.size() < m.column.size()) stamp_.resize(m.column.size(), 0u);
-  if (++stamp_value_ == 0) {  // wrapped: clear the stamps
-    std::fill(stamp_.begin(), stamp_.end(), 0u);
-    stamp_value_ = 1;
-  }
+void InPlaceSum::start(CsrMatrix& m) {
+  m_ = &m;
+  room(flag_, m.column.size());
+  flag_.assign(m.column.size(), Flag::unset);
 }
 
-bool InPlaceSum::sum_rows(CsrMatrix& m, int first, int last, const std::vector<Triplet>* parts, std::size_t count) {
+void InPlaceSum::start_at_zero(CsrMatrix& m) {
+  start(m);
+  std::fill(m.value.begin(), m.value.end(), 0.0);
+}
+
+size_t InPlaceSum::count_set() const {
+  return static_cast<size_t>(std::count(flag_.begin(), flag_.end(), Flag::set));
+}
+
+bool InPlaceSum::sum_rows(int first, int last, const std::vector<Triplet>* parts, std::size_t count) {
+  CsrMatrix& m = *m_;
   size_t covered = 0;  // entries set
   for (const std::vector<Triplet>* p = parts; p != parts + count; ++p)
     for (const Triplet& t : *p) {
@@ -26,10 +33,10 @@ bool InPlaceSum::sum_rows(CsrMatrix& m, int first, int last, const std::vector<T
       const int* at = std::lower_bound(b, e, t.col);
       if (at == e || *at != t.col) return false;  // a new entry: the pattern changed
       const size_t k = static_cast<size_t>(at - m.column.data());
-      if (stamp_[k] == stamp_value_) {
+      if (flag_[k] == Flag::set) {
         m.value[k] += t.value;
       } else {
-        stamp_[k] = stamp_value_;
+        flag_[k] = Flag::set;
         m.value[k] = t.value;
         ++covered;
       }

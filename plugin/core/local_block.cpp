@@ -44,4 +44,35 @@ void LocalBlock::scatter(std::vector<Triplet>* const* out, const RowRanges& rang
   }
 }
 
+void LocalBlock::scatter(InPlaceSum& sum, std::vector<Triplet>& misses) {
+  // The columns by increasing dof (a handful: insertion sort), so that each row's entries are found in one
+  // pass along the matrix row. An entry's sum is over the solid elements in order whatever the order of the
+  // columns within one element.
+  const int columns = static_cast<int>(column_dofs_.size());
+  by_dof_.resize(columns);
+  for (int c = 0; c < columns; ++c) {
+    int j = c;
+    for (; j > 0 && column_dofs_[by_dof_[j - 1]] > column_dofs_[c]; --j) by_dof_[j] = by_dof_[j - 1];
+    by_dof_[j] = c;
+  }
+  const int* const dof_of = column_dofs_.data();
+  for (int i : used_rows_) {
+    const int row = row_dofs_[i];
+    const InPlaceSum::Row on_pattern = sum.row(row);
+    const int* at = on_pattern.begin;
+    double* const row_entries = entries_.data() + i;
+    for (int c : by_dof_) {
+      double& entry = row_entries[static_cast<size_t>(c) * rows_];
+      if (entry == 0.0) continue;
+      const int col = dof_of[c];
+      while (at != on_pattern.end && *at < col) ++at;
+      if (at != on_pattern.end && *at == col)
+        sum.add_at(on_pattern, at, entry);
+      else
+        misses.push_back({row, col, entry});
+      entry = 0.0;
+    }
+  }
+}
+
 }  // namespace dlmfsi

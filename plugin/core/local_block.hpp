@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "in_place_sum.hpp"
 #include "sparse.hpp"
 
 namespace dlmfsi {
@@ -44,6 +45,10 @@ class LocalBlock {
   // The same, each row's triplets appended to out[ranges.of(row)] (CsrBuilder::build_by_range).
   void scatter(std::vector<Triplet>* const* out, const RowRanges& ranges);
 
+  // The same entries, in the same order, added to the summation on the last call's pattern where they are
+  // on it (CsrBuilder::sum_on_last_pattern), the others appended to misses.
+  void scatter(InPlaceSum& sum, std::vector<Triplet>& misses);
+
   // Entries of one solid element for each used row and fluid column: an estimate of the triplets.
   size_t used_entries_per_fluid_element() const { return used_rows_.size() * used_fluid_dofs_.size(); }
 
@@ -53,6 +58,7 @@ class LocalBlock {
   std::vector<int> row_dofs_;     // global multiplier dof of each row
   std::vector<int> column_dofs_;  // global fluid dof of each column
   std::vector<int> column_of_;    // per local fluid dof of the element entered last: its column
+  std::vector<int> by_dof_;       // scatter(InPlaceSum&, ...): the columns by increasing dof
   // Column-major, rows_ per column, and spare room for more columns; zero outside the current element's
   // columns (scatter clears what it reads), so that a new column starts at zero.
   std::vector<double> entries_;

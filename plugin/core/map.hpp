@@ -19,6 +19,8 @@ class SolidMap {
   // The monomial coefficients (lattice.hpp order, degree()) of X and Y on triangle k in the reference
   // coordinates, or false to let the caller fit them from evaluate().
   virtual bool coefficients(int, double*, double*) const { return false; }
+  // A hint that triangle k comes soon: its data brought towards the cache (nothing by default).
+  virtual void prefetch(int) const {}
 };
 
 inline double det2(const double j[2][2]) { return j[0][0] * j[1][1] - j[0][1] * j[1][0]; }

@@ -51,6 +51,12 @@ class PolynomialBasis {
     }
   }
 
+  // A hint that element k comes soon: its fit and map brought towards the cache.
+  void prefetch(int k) const {
+    fit_.prefetch(k);
+    maps_.prefetch(k);
+  }
+
   // The reference coordinates of point x in element k (the inverse of the element's affine map).
   Point to_reference(int k, Point x) const { return maps_.to_reference(k, x); }
 

@@ -63,6 +63,7 @@ class ScaledMap : public SolidMap {
   }
   int degree() const override { return degree_; }
   bool coefficients(int k, double* cx, double* cy) const override;
+  void prefetch(int k) const override { base_.prefetch(k); }
 
  private:
   const SolidMap& base_;

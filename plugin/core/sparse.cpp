@@ -34,7 +34,7 @@ const CsrMatrix& CsrBuilder::build_ranges(int rows, int cols, int n, std::size_t
     in_place_sum_.start(m);
     range_kept_.resize(n);
     on_threads(n, [&](int t) {
-      range_kept_[t] = in_place_sum_.sum_rows(m, ranges_[t]->first, ranges_[t]->last, from_range(t), count);
+      range_kept_[t] = in_place_sum_.sum_rows(ranges_[t]->first, ranges_[t]->last, from_range(t), count);
     });
     for (int t = 0; t < n; ++t) kept_pattern_ = kept_pattern_ && range_kept_[t];
     if (kept_pattern_) return m;
@@ -74,6 +74,57 @@ const CsrMatrix& CsrBuilder::build_ranges(int rows, int cols, int n, std::size_t
     m.start.clear();
     throw;
   }
+  return m;
+}
+
+InPlaceSum* CsrBuilder::sum_on_last_pattern(int rows, int cols) {
+  CsrMatrix& m = matrix_;
+  if (m.rows != rows || m.cols != cols || m.start.size() != static_cast<size_t>(rows) + 1) return nullptr;
+  in_place_sum_.start_at_zero(m);
+  return &in_place_sum_;
+}
+
+const CsrMatrix& CsrBuilder::build_on_last_pattern(const std::vector<Triplet>& misses) {
+  CsrMatrix& m = matrix_;
+  const size_t set = in_place_sum_.count_set();
+  kept_pattern_ = misses.empty() && set == m.column.size();
+  if (kept_pattern_) return m;
+  if (ranges_.empty()) ranges_.push_back(std::make_unique<CompressedRows>());
+  CompressedRows& r = *ranges_[0];
+  r.first = 0;
+  r.last = m.rows;
+  r.compress<true>(m.cols, &misses, 1);
+  // Row by row, the set entries of the last pattern and the misses' entries merged by column (no column is
+  // in both: a miss is an entry outside the last pattern).
+  CsrMatrix& out = merged_;
+  const size_t size = set + r.column.size();
+  room(out.column, size);
+  room(out.value, size);
+  out.column.resize(size);
+  out.value.resize(size);
+  out.start.resize(m.rows + 1);
+  out.rows = m.rows;
+  out.cols = m.cols;
+  size_t at = 0, miss = 0;
+  out.start[0] = 0;
+  for (int i = 0; i < m.rows; ++i) {
+    size_t k = m.start[i];
+    const size_t kept_end = m.start[i + 1], miss_end = miss + r.length[i];
+    for (;;) {
+      while (k < kept_end && !in_place_sum_.set(k)) ++k;
+      if (k < kept_end && (miss == miss_end || m.column[k] < r.column[miss])) {
+        out.column[at] = m.column[k];
+        out.value[at++] = m.value[k++];
+      } else if (miss < miss_end) {
+        out.column[at] = r.column[miss];
+        out.value[at++] = r.value[miss++];
+      } else {
+        break;
+      }
+    }
+    out.start[i + 1] = static_cast<int>(at);
+  }
+  std::swap(m, out);
   return m;
 }
 

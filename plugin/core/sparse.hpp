@@ -30,6 +30,15 @@ class CsrBuilder {
   // for the unsplit lists, since a row's triplets keep their order.
   const CsrMatrix& build_by_range(const RowRanges& ranges, int cols, const std::vector<Triplet>* parts,
                                   int per_range);
+  // The next build entry by entry (one thread), summed straight into the last build's values where the
+  // entry is on its pattern (InPlaceSum::add); an entry that is not goes to a list of triplets instead, the
+  // misses. Every contribution to an entry takes the same way, in order, so that each sum is compress's.
+  // Returns the summation, or nullptr when there is no last matrix of these sizes (then build as usual).
+  InPlaceSum* sum_on_last_pattern(int rows, int cols);
+  // The matrix of the entries set in place (the last pattern's others dropped) and of the compressed
+  // misses: build's matrix of all the contributions in the order they came, bit for bit. The pattern is
+  // kept when there are no misses and every entry was set.
+  const CsrMatrix& build_on_last_pattern(const std::vector<Triplet>& misses);
   const CsrMatrix& matrix() const { return matrix_; }
   // Did the last build keep the pattern of the one before?
   bool kept_pattern() const { return kept_pattern_; }
@@ -46,6 +55,7 @@ class CsrBuilder {
   std::vector<std::unique_ptr<CompressedRows>> ranges_;  // one per thread
   InPlaceSum in_place_sum_;
   std::vector<char> range_kept_;  // per range: were its rows summed in place?
+  CsrMatrix merged_;              // build_on_last_pattern's output, then the matrix's former arrays
 };
 
 // One build, without keeping the buffers.

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "coupling.hpp"
+#include "errors.hpp"
 #include "field_map.hpp"
 #include "support.hpp"
 
@@ -68,4 +69,48 @@ TEST(CouplingAssembly, CallsInALoopGiveTheOneOffMatrices) {
   const CsrMatrix want = assemble_coupling(other, solid_side, map, opt);
   EXPECT_EQ(assembly.assemble(other, solid_side, map, opt).value, want.value);
   EXPECT_FALSE(assembly.kept_pattern());
+}
+
+// A time loop of small steps, as a simulation makes them: on one thread each call after the first sums
+// into the last call's matrix and merges the entries off its pattern; the pattern changes at most steps.
+// Every call gives the one-off matrix bit for bit, on 1 and 2 threads and switching between them, and
+// after a call that failed.
+TEST(CouplingAssembly, SmallStepsOnTheLastPatternGiveTheOneOffMatrices) {
+  const Mesh fluid_mesh = test::grid_mesh(20, 20, 0, 0, 1, 1, true);
+  const Mesh solid = test::grid_mesh(17, 15, 0.3, 0.3, 0.4, 0.35);
+  const test::P1 vf(fluid_mesh), vs(solid);
+  CouplingOptions opt;
+  opt.c1 = 0;
+  const FluidSide fluid(fluid_mesh, vf, opt.fluid_components);
+  const SolidSide solid_side(solid, vs, opt.solid_components);
+  for (const std::vector<int>& threads : {std::vector<int>{1}, {2}, {1, 1, 2}}) {
+    CouplingAssembly assembly;
+    CsrMatrix last;
+    int changed = 0, kept = 0;
+    for (int step = 0; step < 12; ++step) {
+      const Rotated r(solid, 0.1 + 0.004 * (step / 2), 0.002 * (step / 2));  // a move every other step
+      const FieldMap map(solid, vs, r.x.data(), 0, vs, r.y.data(), 0);
+      opt.threads = threads[step % threads.size()];
+      const CsrMatrix want = assemble_coupling(fluid, solid_side, map, opt);
+      const CsrMatrix& got = assembly.assemble(fluid, solid_side, map, opt);
+      ASSERT_TRUE(same_pattern(got, want)) << step;
+      ASSERT_EQ(got.value, want.value) << step;
+      if (step == 0) {
+        EXPECT_FALSE(assembly.kept_pattern());
+      } else if (!last.start.empty()) {
+        EXPECT_EQ(assembly.kept_pattern(), same_pattern(want, last)) << step;
+      }
+      if (step > 0) (assembly.kept_pattern() ? kept : changed)++;
+      last = want;
+      if (step == 5) {  // a call that fails during the assembly (a mirrored solid) leaves the next ones right
+        Rotated mirrored = r;
+        for (double& x : mirrored.x) x = 1 - x;
+        const FieldMap bad(solid, vs, mirrored.x.data(), 0, vs, mirrored.y.data(), 0);
+        EXPECT_THROW(assembly.assemble(fluid, solid_side, bad, opt), Error);
+        last = CsrMatrix{};  // the pattern kept next is either
+      }
+    }
+    EXPECT_GE(changed, 3);
+    EXPECT_GE(kept, 5);
+  }
 }

@@ -205,3 +205,71 @@ TEST(Sparse, BuildByRangeIsBuildOfTheUnsplitTriplets) {
     EXPECT_FALSE(builder.kept_pattern());
   }
 }
+
+// Entries summed one by one on the last build's pattern, the others set aside as misses
+// (sum_on_last_pattern, then build_on_last_pattern): compress's matrix of the same triplets bit for bit,
+// whether the pattern is the same (kept), loses entries, gains some, or both; values of many magnitudes, so
+// that another summation order would change them.
+TEST(Sparse, SumOnLastPatternIsCompressBitForBit) {
+  const int rows = 120, cols = 300;
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> mantissa(-1, 1);
+  auto triplets = [&](int count, int spread) {
+    std::vector<Triplet> out;
+    for (int e = 0; e < count; ++e) {
+      const int i = static_cast<int>(rng() % rows);
+      out.push_back({i, (i * 7 + static_cast<int>(rng() % spread)) % cols,
+                     std::ldexp(mantissa(rng), static_cast<int>(rng() % 50) - 25)});
+    }
+    return out;
+  };
+  auto same = [](const CsrMatrix& got, const CsrMatrix& want) {
+    EXPECT_EQ(got.start, want.start);
+    EXPECT_EQ(got.column, want.column);
+    ASSERT_EQ(got.value.size(), want.value.size());
+    for (size_t k = 0; k < got.value.size(); ++k)
+      ASSERT_EQ(std::memcmp(&got.value[k], &want.value[k], sizeof(double)), 0) << "entry " << k;
+  };
+  // one by one as LocalBlock::scatter(InPlaceSum&, ...) does
+  auto on_last_pattern = [&](CsrBuilder& builder, const std::vector<Triplet>& ts) -> const CsrMatrix& {
+    InPlaceSum* sum = builder.sum_on_last_pattern(rows, cols);
+    EXPECT_NE(sum, nullptr);
+    std::vector<Triplet> misses;
+    for (const Triplet& t : ts)
+      if (!sum->add(sum->row(t.row), t.col, t.value)) misses.push_back(t);
+    return builder.build_on_last_pattern(misses);
+  };
+  CsrBuilder builder;
+  EXPECT_EQ(builder.sum_on_last_pattern(rows, cols), nullptr);  // no last matrix yet
+  std::vector<Triplet> ts = triplets(6000, 12);
+  builder.build(rows, cols, {ts});
+  // the same pattern, new values in another order: kept
+  std::shuffle(ts.begin(), ts.end(), rng);
+  for (Triplet& t : ts) t.value = std::ldexp(mantissa(rng), static_cast<int>(rng() % 50) - 25);
+  same(on_last_pattern(builder, ts), compress(rows, cols, {ts}));
+  EXPECT_TRUE(builder.kept_pattern());
+  // entries gone (row 3 and every triplet of column 10): dropped
+  std::vector<Triplet> fewer;
+  for (const Triplet& t : ts)
+    if (t.row != 3 && t.col != 10) fewer.push_back(t);
+  same(on_last_pattern(builder, fewer), compress(rows, cols, {fewer}));
+  EXPECT_FALSE(builder.kept_pattern());
+  // new entries, also in rows that had none, mixed in with the old ones: merged in column order
+  std::vector<Triplet> more = ts;
+  const std::vector<Triplet> wider = triplets(3000, 20);
+  more.insert(more.begin() + 1000, wider.begin(), wider.end());
+  same(on_last_pattern(builder, more), compress(rows, cols, {more}));
+  EXPECT_FALSE(builder.kept_pattern());
+  // both at once, after which the new pattern is kept for the same triplets
+  std::vector<Triplet> moved = triplets(5000, 15);
+  same(on_last_pattern(builder, moved), compress(rows, cols, {moved}));
+  EXPECT_FALSE(builder.kept_pattern());
+  same(on_last_pattern(builder, moved), compress(rows, cols, {moved}));
+  EXPECT_TRUE(builder.kept_pattern());
+  // nothing at all: an empty matrix
+  same(on_last_pattern(builder, {}), compress(rows, cols, {{}}));
+  EXPECT_FALSE(builder.kept_pattern());
+  // other sizes: no last pattern
+  EXPECT_EQ(builder.sum_on_last_pattern(rows + 1, cols), nullptr);
+  EXPECT_EQ(builder.sum_on_last_pattern(rows, cols + 1), nullptr);
+}
