@@ -3,9 +3,10 @@
 //   matrix B = dlmfsi(Vf, Vs, [X, Y, Z], c1=1, c2=10, fluid=[0,1,2], solid=[0,1,2]);  // rows Vs, columns Vf
 //
 // The contract and the named parameters are those of the 2D function (dlmfsi.cpp), but for tol= (2D's
-// adaptive quadrature leaves; in 3D method="quadrature" refines uniformly, subdivide=). It converts FreeFEM's mesh3 and FESpace3 into the core's arrays and Basis3 evaluators (the
-// element's own basis functions, so any 3D element works), calls dlmfsi::assemble_coupling (coupling3d),
-// and turns every C++ exception into a FreeFEM ExecError that a script can catch.
+// adaptive quadrature leaves; in 3D method="quadrature" refines uniformly, subdivide=). It converts FreeFEM's
+// mesh3 and FESpace3 into the core's arrays and Basis3 evaluators (the element's own basis functions, so any
+// 3D element works), calls dlmfsi::assemble_coupling (coupling3d), and turns every C++ exception into a
+// FreeFEM ExecError that a script can catch.
 #include "ff++.hpp"
 
 #include <algorithm>
