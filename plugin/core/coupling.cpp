@@ -33,14 +33,16 @@ namespace {
 
 // One thread's share of one call: each solid triangle's block, integrated by the chosen TriangleIntegrator
 // and scattered to the thread's triplets, one list per row range of the compression (triplets[r]); or,
-// with in_place (one thread), summed into the last call's matrix, the entries off its pattern appended to
-// triplets[0].
+// with in_place, summed into the last call's matrix, the entries off its pattern appended to misses and
+// those of the rows summed later (InPlaceSum::later) to later.
 class Assembler {
  public:
   Assembler(const Integrand& integrand, const FluidSide& fluid, const SolidSide& solid, const SolidMap& map,
             const CouplingOptions& options, const CouplingReport& degrees, FluidSearch& search,
-            std::vector<std::vector<Triplet>*> triplets, const RowRanges& ranges, InPlaceSum* in_place)
+            std::vector<std::vector<Triplet>*> triplets, const RowRanges& ranges, InPlaceSum* in_place,
+            std::vector<Triplet>* misses, std::vector<Triplet>* later)
       : solid_(solid), map_(map), triplets_(std::move(triplets)), ranges_(ranges), in_place_(in_place),
+        misses_(misses), later_(later),
         block_(solid.space().local_dofs(), integrand.pairs.used_multiplier_dofs(), fluid.space().local_dofs(),
                integrand.pairs.used_fluid_dofs()) {
     report.fluid_degree = degrees.fluid_degree;
@@ -54,9 +56,14 @@ class Assembler {
   void run(const int* first, const int* last) {
     // about two fluid triangles' columns per solid triangle: room for most runs without regrowing
     const size_t room = static_cast<size_t>(last - first) * 2 * block_.used_entries_per_fluid_element();
-    for (std::vector<Triplet>* list : triplets_) {
-      list->clear();
-      list->reserve(room / triplets_.size());
+    if (in_place_) {
+      misses_->clear();
+      later_->clear();
+    } else {
+      for (std::vector<Triplet>* list : triplets_) {
+        list->clear();
+        list->reserve(room / triplets_.size());
+      }
     }
     // The solid triangles come in Morton order, their data in the mesh's: a triangle's data is fetched
     // ahead (four triangles ahead by its number, its corners two ahead), while the one before is integrated.
@@ -85,7 +92,7 @@ class Assembler {
       report.worst_triangle = ks;
     }
     if (in_place_)
-      block_.scatter(*in_place_, *triplets_[0]);
+      block_.scatter(*in_place_, *misses_, *later_);
     else
       block_.scatter(triplets_.data(), ranges_);
   }
@@ -106,6 +113,8 @@ class Assembler {
   const std::vector<std::vector<Triplet>*> triplets_;
   const RowRanges ranges_;
   InPlaceSum* const in_place_;
+  std::vector<Triplet>* const misses_;
+  std::vector<Triplet>* const later_;
   LocalBlock block_;
   std::unique_ptr<TriangleIntegrator> integrator_;
 };
@@ -137,6 +146,25 @@ const std::vector<int>& share_in_order(const SolidSide& solid, int first, int la
   for (int k : solid.order())
     if (k >= first && k < last) out.push_back(k);
   return out;
+}
+
+// The rows that the solid elements of more than one thread's share meet (run_shares' split of elements),
+// marked in later (one per row); owner: scratch.
+void mark_later_rows(const SolidSide& solid, const std::vector<int>& elements, int threads, std::vector<char>& later,
+                     std::vector<int>& owner) {
+  const int rows = solid.space().dof_count(), dofs = solid.space().local_dofs();
+  later.assign(rows, 0);
+  owner.assign(rows, -1);
+  const long long count = static_cast<long long>(elements.size());
+  for (int t = 0; t < threads; ++t)
+    for (long long e = count * t / threads; e < count * (t + 1) / threads; ++e) {
+      const int* d = solid.dofs(elements[e]);
+      for (int i = 0; i < dofs; ++i) {
+        int& o = owner[d[i]];
+        if (o < 0) o = t;
+        else if (o != t) later[d[i]] = 1;
+      }
+    }
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -251,28 +279,38 @@ const CsrMatrix& CouplingAssembly::assemble_checked(const FluidSide& fluid, cons
   // The map into the fluid side's scaled coordinates.
   const ScaledMap scaled_map(map, fluid.scale());
   const SolidMap& fluid_map = fluid.scale() == 0 ? map : scaled_map;
-  // One thread sums straight into the last call's matrix (a time loop's pattern changes little), the
-  // entries off its pattern as triplets.
-  InPlaceSum* const in_place = threads == 1 ? matrix_.sum_on_last_pattern(rows, fluid.space().dof_count()) : nullptr;
+  // The threads sum straight into the last call's matrix (a time loop's pattern changes little), the
+  // entries off its pattern as triplets; rows that several threads meet are summed afterwards, in order.
+  const int size = solid.mesh().size();
+  const std::vector<int>& elements =
+      share_in_order(solid, static_cast<int>(static_cast<long long>(size) * opt.part / opt.parts),
+                     static_cast<int>(static_cast<long long>(size) * (opt.part + 1) / opt.parts), share_);
+  InPlaceSum* const in_place = matrix_.sum_on_last_pattern(rows, fluid.space().dof_count());
+  if (in_place) {
+    if (threads > 1)
+      mark_later_rows(solid, elements, threads, in_place->later_rows(), owner_);
+    else
+      in_place->later_rows().clear();
+    if (misses_.size() < static_cast<size_t>(threads) + 1) misses_.resize(threads + 1);
+    if (later_.size() < static_cast<size_t>(threads)) later_.resize(threads);
+  }
   std::vector<std::unique_ptr<Assembler>> assemblers;
   for (int t = 0; t < threads; ++t) {
     std::vector<std::vector<Triplet>*> lists_of_t;
     for (int r = 0; r < ranges.n; ++r) lists_of_t.push_back(&triplets_[static_cast<size_t>(r) * threads + t]);
     assemblers.push_back(std::make_unique<Assembler>(integrand, fluid, solid, fluid_map, opt, total,
                                                      threads_[t]->search_on(fluid), std::move(lists_of_t), ranges,
-                                                     in_place));
+                                                     in_place, in_place ? &misses_[t] : nullptr,
+                                                     in_place ? &later_[t] : nullptr));
   }
   total.setup_seconds = seconds_since(start);
 
-  const int size = solid.mesh().size();
-  run_shares(assemblers,
-             share_in_order(solid, static_cast<int>(static_cast<long long>(size) * opt.part / opt.parts),
-                            static_cast<int>(static_cast<long long>(size) * (opt.part + 1) / opt.parts), share_));
+  run_shares(assemblers, elements);
   total.pieces_seconds = seconds_since(start) - total.setup_seconds;
 
   for (const auto& a : assemblers) add_counts(a->report, total);
   check_outside(opt, fluid.scale(), total);
-  const CsrMatrix& m = in_place ? matrix_.build_on_last_pattern(triplets_[0])
+  const CsrMatrix& m = in_place ? matrix_.build_on_last_pattern(misses_.data(), later_.data(), threads)
                                 : matrix_.build_by_range(ranges, fluid.space().dof_count(), triplets_.data(), threads);
   check_finite(m, opt);
   total.seconds = seconds_since(start);

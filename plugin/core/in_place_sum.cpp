@@ -22,6 +22,12 @@ size_t InPlaceSum::count_set() const {
   return static_cast<size_t>(std::count(flag_.begin(), flag_.end(), Flag::set));
 }
 
+void InPlaceSum::sum_later(const std::vector<Triplet>* parts, std::size_t count, std::vector<Triplet>& misses) {
+  for (const std::vector<Triplet>* p = parts; p != parts + count; ++p)
+    for (const Triplet& t : *p)
+      if (!add(row(t.row), t.col, t.value)) misses.push_back(t);
+}
+
 bool InPlaceSum::sum_rows(int first, int last, const std::vector<Triplet>* parts, std::size_t count) {
   CsrMatrix& m = *m_;
   size_t covered = 0;  // entries set

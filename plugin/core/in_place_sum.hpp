@@ -49,6 +49,12 @@ class InPlaceSum {
     row.value[j] += v;
     row.flag[j] = Flag::set;
   }
+  // Rows that several threads add to (their shares of the elements meet there): not summed entry by entry
+  // but later, from the threads' triplets in order (sum_later). Empty: none. Kept until changed.
+  std::vector<char>& later_rows() { return later_; }
+  bool later(int i) const { return !later_.empty() && later_[i]; }
+  // The triplets of the later rows in parts, in order (one thread), those off m's pattern appended to misses.
+  void sum_later(const std::vector<Triplet>* parts, std::size_t count, std::vector<Triplet>& misses);
   // Was entry k of m set in this summation?
   bool set(size_t k) const { return flag_[k] == Flag::set; }
   // The entries set in this summation.
@@ -57,6 +63,7 @@ class InPlaceSum {
  private:
   CsrMatrix* m_ = nullptr;
   std::vector<Flag> flag_;  // per entry of m: set in this summation?
+  std::vector<char> later_;  // per row of m: summed later?
 };
 
 }  // namespace dlmfsi

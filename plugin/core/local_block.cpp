@@ -44,7 +44,7 @@ void LocalBlock::scatter(std::vector<Triplet>* const* out, const RowRanges& rang
   }
 }
 
-void LocalBlock::scatter(InPlaceSum& sum, std::vector<Triplet>& misses) {
+void LocalBlock::scatter(InPlaceSum& sum, std::vector<Triplet>& misses, std::vector<Triplet>& later) {
   // The columns by increasing dof (a handful: insertion sort), so that each row's entries are found in one
   // pass along the matrix row. An entry's sum is over the solid elements in order whatever the order of the
   // columns within one element.
@@ -58,6 +58,15 @@ void LocalBlock::scatter(InPlaceSum& sum, std::vector<Triplet>& misses) {
   const int* const dof_of = column_dofs_.data();
   for (int i : used_rows_) {
     const int row = row_dofs_[i];
+    if (sum.later(row)) {
+      double* entry = &entries_[i];
+      for (int c = 0; c < columns; ++c, entry += rows_) {
+        if (*entry == 0.0) continue;
+        later.push_back({row, dof_of[c], *entry});
+        *entry = 0.0;
+      }
+      continue;
+    }
     const InPlaceSum::Row on_pattern = sum.row(row);
     const int* at = on_pattern.begin;
     double* const row_entries = entries_.data() + i;

@@ -45,9 +45,10 @@ class LocalBlock {
   // The same, each row's triplets appended to out[ranges.of(row)] (CsrBuilder::build_by_range).
   void scatter(std::vector<Triplet>* const* out, const RowRanges& ranges);
 
-  // The same entries, in the same order, added to the summation on the last call's pattern where they are
-  // on it (CsrBuilder::sum_on_last_pattern), the others appended to misses.
-  void scatter(InPlaceSum& sum, std::vector<Triplet>& misses);
+  // The same entries added to the summation on the last call's pattern where they are on it
+  // (CsrBuilder::sum_on_last_pattern), the others appended to misses; the entries of the rows summed later
+  // (InPlaceSum::later) appended to later.
+  void scatter(InPlaceSum& sum, std::vector<Triplet>& misses, std::vector<Triplet>& later);
 
   // Entries of one solid element for each used row and fluid column: an estimate of the triplets.
   size_t used_entries_per_fluid_element() const { return used_rows_.size() * used_fluid_dofs_.size(); }

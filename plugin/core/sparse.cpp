@@ -84,16 +84,23 @@ InPlaceSum* CsrBuilder::sum_on_last_pattern(int rows, int cols) {
   return &in_place_sum_;
 }
 
-const CsrMatrix& CsrBuilder::build_on_last_pattern(const std::vector<Triplet>& misses) {
+const CsrMatrix& CsrBuilder::build_on_last_pattern(std::vector<Triplet>* misses, const std::vector<Triplet>* later,
+                                                   int threads) {
   CsrMatrix& m = matrix_;
+  const int lists = later ? threads + 1 : 1;
+  if (later) {
+    misses[threads].clear();
+    in_place_sum_.sum_later(later, threads, misses[threads]);
+  }
   const size_t set = in_place_sum_.count_set();
-  kept_pattern_ = misses.empty() && set == m.column.size();
+  kept_pattern_ = set == m.column.size();
+  for (int t = 0; t < lists; ++t) kept_pattern_ = kept_pattern_ && misses[t].empty();
   if (kept_pattern_) return m;
   if (ranges_.empty()) ranges_.push_back(std::make_unique<CompressedRows>());
   CompressedRows& r = *ranges_[0];
   r.first = 0;
   r.last = m.rows;
-  r.compress<true>(m.cols, &misses, 1);
+  r.compress<true>(m.cols, misses, lists);
   // Row by row, the set entries of the last pattern and the misses' entries merged by column (no column is
   // in both: a miss is an entry outside the last pattern).
   CsrMatrix& out = merged_;

@@ -37,8 +37,12 @@ class CsrBuilder {
   InPlaceSum* sum_on_last_pattern(int rows, int cols);
   // The matrix of the entries set in place (the last pattern's others dropped) and of the compressed
   // misses: build's matrix of all the contributions in the order they came, bit for bit. The pattern is
-  // kept when there are no misses and every entry was set.
-  const CsrMatrix& build_on_last_pattern(const std::vector<Triplet>& misses);
+  // kept when there are no misses and every entry was set. With threads (each summing the rows only it adds
+  // to, InPlaceSum::later_rows): their later rows' triplets in later[0 .. threads - 1] are summed here in
+  // order, and the misses are in misses[0 .. threads - 1], misses[threads] taking the later rows' ones. An
+  // entry's contributions then all come from one list, in order.
+  const CsrMatrix& build_on_last_pattern(std::vector<Triplet>* misses, const std::vector<Triplet>* later = nullptr,
+                                         int threads = 1);
   const CsrMatrix& matrix() const { return matrix_; }
   // Did the last build keep the pattern of the one before?
   bool kept_pattern() const { return kept_pattern_; }

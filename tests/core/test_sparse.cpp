@@ -237,7 +237,7 @@ TEST(Sparse, SumOnLastPatternIsCompressBitForBit) {
     std::vector<Triplet> misses;
     for (const Triplet& t : ts)
       if (!sum->add(sum->row(t.row), t.col, t.value)) misses.push_back(t);
-    return builder.build_on_last_pattern(misses);
+    return builder.build_on_last_pattern(&misses);
   };
   CsrBuilder builder;
   EXPECT_EQ(builder.sum_on_last_pattern(rows, cols), nullptr);  // no last matrix yet
@@ -272,4 +272,56 @@ TEST(Sparse, SumOnLastPatternIsCompressBitForBit) {
   // other sizes: no last pattern
   EXPECT_EQ(builder.sum_on_last_pattern(rows + 1, cols), nullptr);
   EXPECT_EQ(builder.sum_on_last_pattern(rows, cols + 1), nullptr);
+}
+
+// Two threads summing on the last pattern: each sums in place the rows only it adds to, and hands the rows
+// both add to (InPlaceSum::later_rows) as triplets, summed after them in thread order. The matrix is
+// compress's of thread 0's triplets then thread 1's, bit for bit, on the same pattern and on a moved one.
+TEST(Sparse, SumOnLastPatternWithThreadsIsCompressBitForBit) {
+  const int rows = 120, cols = 300;
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> mantissa(-1, 1);
+  // thread 0 adds to rows 0 .. 69, thread 1 to rows 50 .. 119: rows 50 .. 69 are met by both
+  auto thread_triplets = [&](int first_row, int last_row, int spread) {
+    std::vector<Triplet> out;
+    for (int e = 0; e < 4000; ++e) {
+      const int i = first_row + static_cast<int>(rng() % (last_row - first_row));
+      out.push_back({i, (i * 7 + static_cast<int>(rng() % spread)) % cols,
+                     std::ldexp(mantissa(rng), static_cast<int>(rng() % 50) - 25)});
+    }
+    return out;
+  };
+  auto same = [](const CsrMatrix& got, const CsrMatrix& want) {
+    EXPECT_EQ(got.start, want.start);
+    EXPECT_EQ(got.column, want.column);
+    ASSERT_EQ(got.value.size(), want.value.size());
+    for (size_t k = 0; k < got.value.size(); ++k)
+      ASSERT_EQ(std::memcmp(&got.value[k], &want.value[k], sizeof(double)), 0) << "entry " << k;
+  };
+  CsrBuilder builder;
+  std::vector<std::vector<Triplet>> threads = {thread_triplets(0, 70, 12), thread_triplets(50, 120, 12)};
+  builder.build(rows, cols, threads);
+  for (int spread : {0, 12, 16}) {  // new values on the same pattern (0), then moved and wider patterns
+    SCOPED_TRACE(spread);
+    if (spread == 0) {
+      for (auto& list : threads)
+        for (Triplet& x : list) x.value = std::ldexp(mantissa(rng), static_cast<int>(rng() % 50) - 25);
+    } else {
+      threads = {thread_triplets(0, 70, spread), thread_triplets(50, 120, spread)};
+    }
+    InPlaceSum* sum = builder.sum_on_last_pattern(rows, cols);
+    ASSERT_NE(sum, nullptr);
+    sum->later_rows().assign(rows, 0);
+    for (int i = 50; i < 70; ++i) sum->later_rows()[i] = 1;
+    std::vector<std::vector<Triplet>> misses(3), later(2);
+    for (int t = 0; t < 2; ++t)
+      for (const Triplet& x : threads[t]) {
+        if (sum->later(x.row))
+          later[t].push_back(x);
+        else if (!sum->add(sum->row(x.row), x.col, x.value))
+          misses[t].push_back(x);
+      }
+    same(builder.build_on_last_pattern(misses.data(), later.data(), 2), compress(rows, cols, threads));
+    EXPECT_EQ(builder.kept_pattern(), spread == 0);
+  }
 }
