@@ -50,6 +50,17 @@ std::vector<std::vector<Triplet>> random_parts(unsigned seed, int rows, int cols
   return parts;
 }
 
+// got is want bit for bit: sizes, pattern, and every value's bytes (so -0.0 differs from 0.0).
+void same_bits(const CsrMatrix& got, const CsrMatrix& want) {
+  EXPECT_EQ(got.rows, want.rows);
+  EXPECT_EQ(got.cols, want.cols);
+  EXPECT_EQ(got.start, want.start);
+  EXPECT_EQ(got.column, want.column);
+  ASSERT_EQ(got.value.size(), want.value.size());
+  for (size_t k = 0; k < got.value.size(); ++k)
+    ASSERT_EQ(std::memcmp(&got.value[k], &want.value[k], sizeof(double)), 0) << "entry " << k;
+}
+
 // The same triplets with new values (the pattern kept).
 void revalue(std::vector<std::vector<Triplet>>& parts, double scale) {
   for (auto& p : parts)
@@ -107,26 +118,17 @@ TEST(Sparse, ThreadedBuildIsTheSameBitForBit) {
     const int c = static_cast<int>(rng() % (i % 10 == 0 ? cols : 40));  // some rows far above 32 columns
     parts[rng() % 3].push_back({i, c, std::ldexp(mantissa(rng), static_cast<int>(rng() % 60) - 30)});
   }
-  auto same = [](const CsrMatrix& got, const CsrMatrix& want) {
-    EXPECT_EQ(got.rows, want.rows);
-    EXPECT_EQ(got.cols, want.cols);
-    EXPECT_EQ(got.start, want.start);
-    EXPECT_EQ(got.column, want.column);
-    ASSERT_EQ(got.value.size(), want.value.size());
-    for (size_t k = 0; k < got.value.size(); ++k)
-      ASSERT_EQ(std::memcmp(&got.value[k], &want.value[k], sizeof(double)), 0) << "entry " << k;
-  };
   for (int threads : {1, 2, 3, 7, 500}) {
     SCOPED_TRACE(threads);
     auto p = parts;
     CsrBuilder builder;
-    same(builder.build(rows, cols, p, threads), compress(rows, cols, p));
+    same_bits(builder.build(rows, cols, p, threads), compress(rows, cols, p));
     EXPECT_FALSE(builder.kept_pattern());
     // the same pattern, new values and another order: summed in place, with another thread count too
     for (int again : {threads, 1 + threads % 3}) {
       revalue(p, 0.7);
       std::swap(p[0][5], p[2][9]);
-      same(builder.build(rows, cols, p, again), compress(rows, cols, p));
+      same_bits(builder.build(rows, cols, p, again), compress(rows, cols, p));
       EXPECT_TRUE(builder.kept_pattern());
     }
     // one entry gone from one range: rebuilt
@@ -135,16 +137,16 @@ TEST(Sparse, ThreadedBuildIsTheSameBitForBit) {
     for (auto& q : p)
       q.erase(std::remove_if(q.begin(), q.end(), [&](const Triplet& t) { return t.row == gone.row && t.col == gone.col; }),
               q.end());
-    same(builder.build(rows, cols, p, threads), compress(rows, cols, p));
+    same_bits(builder.build(rows, cols, p, threads), compress(rows, cols, p));
     EXPECT_FALSE(builder.kept_pattern());
     // a new entry: rebuilt
     p[0].push_back({rows - 1, cols - 1, 0.125});
-    same(builder.build(rows, cols, p, threads), compress(rows, cols, p));
+    same_bits(builder.build(rows, cols, p, threads), compress(rows, cols, p));
     EXPECT_FALSE(builder.kept_pattern());
   }
   CsrBuilder empty;
-  same(empty.build(0, 5, {}, 3), compress(0, 5, {}));
-  same(empty.build(4, 5, {{}, {}}, 3), compress(4, 5, {{}, {}}));
+  same_bits(empty.build(0, 5, {}, 3), compress(0, 5, {}));
+  same_bits(empty.build(4, 5, {{}, {}}, 3), compress(4, 5, {{}, {}}));
 }
 
 // RowRanges::of is the inverse of first: every row lies in the range whose first row is the largest at or
@@ -180,28 +182,21 @@ TEST(Sparse, BuildByRangeIsBuildOfTheUnsplitTriplets) {
       for (const Triplet& x : lists[t]) out[ranges.of(x.row) * lists.size() + t].push_back(x);
     return out;
   };
-  auto same = [](const CsrMatrix& got, const CsrMatrix& want) {
-    EXPECT_EQ(got.start, want.start);
-    EXPECT_EQ(got.column, want.column);
-    ASSERT_EQ(got.value.size(), want.value.size());
-    for (size_t k = 0; k < got.value.size(); ++k)
-      ASSERT_EQ(std::memcmp(&got.value[k], &want.value[k], sizeof(double)), 0) << "entry " << k;
-  };
   for (int n : {1, 2, 5, 150}) {
     SCOPED_TRACE(n);
     const RowRanges ranges{rows, n};
     auto lists = threads;
     CsrBuilder builder;
     auto parts = split(lists, ranges);
-    same(builder.build_by_range(ranges, cols, parts.data(), 3), compress(rows, cols, lists));
+    same_bits(builder.build_by_range(ranges, cols, parts.data(), 3), compress(rows, cols, lists));
     EXPECT_FALSE(builder.kept_pattern());
     revalue(lists, 0.3);
     parts = split(lists, ranges);
-    same(builder.build_by_range(ranges, cols, parts.data(), 3), compress(rows, cols, lists));
+    same_bits(builder.build_by_range(ranges, cols, parts.data(), 3), compress(rows, cols, lists));
     EXPECT_TRUE(builder.kept_pattern());
     lists[2].push_back({rows - 1, cols - 1, 0.5});  // a new entry
     parts = split(lists, ranges);
-    same(builder.build_by_range(ranges, cols, parts.data(), 3), compress(rows, cols, lists));
+    same_bits(builder.build_by_range(ranges, cols, parts.data(), 3), compress(rows, cols, lists));
     EXPECT_FALSE(builder.kept_pattern());
   }
 }
@@ -223,13 +218,6 @@ TEST(Sparse, SumOnLastPatternIsCompressBitForBit) {
     }
     return out;
   };
-  auto same = [](const CsrMatrix& got, const CsrMatrix& want) {
-    EXPECT_EQ(got.start, want.start);
-    EXPECT_EQ(got.column, want.column);
-    ASSERT_EQ(got.value.size(), want.value.size());
-    for (size_t k = 0; k < got.value.size(); ++k)
-      ASSERT_EQ(std::memcmp(&got.value[k], &want.value[k], sizeof(double)), 0) << "entry " << k;
-  };
   // one by one as LocalBlock::scatter(InPlaceSum&, ...) does
   auto on_last_pattern = [&](CsrBuilder& builder, const std::vector<Triplet>& ts) -> const CsrMatrix& {
     InPlaceSum* sum = builder.sum_on_last_pattern(rows, cols);
@@ -246,28 +234,28 @@ TEST(Sparse, SumOnLastPatternIsCompressBitForBit) {
   // the same pattern, new values in another order: kept
   std::shuffle(ts.begin(), ts.end(), rng);
   for (Triplet& t : ts) t.value = std::ldexp(mantissa(rng), static_cast<int>(rng() % 50) - 25);
-  same(on_last_pattern(builder, ts), compress(rows, cols, {ts}));
+  same_bits(on_last_pattern(builder, ts), compress(rows, cols, {ts}));
   EXPECT_TRUE(builder.kept_pattern());
   // entries gone (row 3 and every triplet of column 10): dropped
   std::vector<Triplet> fewer;
   for (const Triplet& t : ts)
     if (t.row != 3 && t.col != 10) fewer.push_back(t);
-  same(on_last_pattern(builder, fewer), compress(rows, cols, {fewer}));
+  same_bits(on_last_pattern(builder, fewer), compress(rows, cols, {fewer}));
   EXPECT_FALSE(builder.kept_pattern());
   // new entries, also in rows that had none, mixed in with the old ones: merged in column order
   std::vector<Triplet> more = ts;
   const std::vector<Triplet> wider = triplets(3000, 20);
   more.insert(more.begin() + 1000, wider.begin(), wider.end());
-  same(on_last_pattern(builder, more), compress(rows, cols, {more}));
+  same_bits(on_last_pattern(builder, more), compress(rows, cols, {more}));
   EXPECT_FALSE(builder.kept_pattern());
   // both at once, after which the new pattern is kept for the same triplets
   std::vector<Triplet> moved = triplets(5000, 15);
-  same(on_last_pattern(builder, moved), compress(rows, cols, {moved}));
+  same_bits(on_last_pattern(builder, moved), compress(rows, cols, {moved}));
   EXPECT_FALSE(builder.kept_pattern());
-  same(on_last_pattern(builder, moved), compress(rows, cols, {moved}));
+  same_bits(on_last_pattern(builder, moved), compress(rows, cols, {moved}));
   EXPECT_TRUE(builder.kept_pattern());
   // nothing at all: an empty matrix
-  same(on_last_pattern(builder, {}), compress(rows, cols, {{}}));
+  same_bits(on_last_pattern(builder, {}), compress(rows, cols, {{}}));
   EXPECT_FALSE(builder.kept_pattern());
   // other sizes: no last pattern
   EXPECT_EQ(builder.sum_on_last_pattern(rows + 1, cols), nullptr);
@@ -290,13 +278,6 @@ TEST(Sparse, SumOnLastPatternWithThreadsIsCompressBitForBit) {
                      std::ldexp(mantissa(rng), static_cast<int>(rng() % 50) - 25)});
     }
     return out;
-  };
-  auto same = [](const CsrMatrix& got, const CsrMatrix& want) {
-    EXPECT_EQ(got.start, want.start);
-    EXPECT_EQ(got.column, want.column);
-    ASSERT_EQ(got.value.size(), want.value.size());
-    for (size_t k = 0; k < got.value.size(); ++k)
-      ASSERT_EQ(std::memcmp(&got.value[k], &want.value[k], sizeof(double)), 0) << "entry " << k;
   };
   CsrBuilder builder;
   std::vector<std::vector<Triplet>> threads = {thread_triplets(0, 70, 12), thread_triplets(50, 120, 12)};
@@ -321,7 +302,7 @@ TEST(Sparse, SumOnLastPatternWithThreadsIsCompressBitForBit) {
         else if (!sum->add(sum->row(x.row), x.col, x.value))
           misses[t].push_back(x);
       }
-    same(builder.build_on_last_pattern(misses.data(), later.data(), 2), compress(rows, cols, threads));
+    same_bits(builder.build_on_last_pattern(misses.data(), later.data(), 2), compress(rows, cols, threads));
     EXPECT_EQ(builder.kept_pattern(), spread == 0);
   }
 }
