@@ -5,6 +5,8 @@
 //   load "dlmfsi_mumps"
 //   real[int] x(n);
 //   int fresh = dlmfsisolve(A, b, x, id=0);   // A, b: this process's shares, global numbering
+//   dlmfsisolve(A, b, x, id=0, kept=true);    // a solve with id 0's factorization; A is not read
+//   matrix S = dlmfsisum(A);                  // the shares summed, whole on every process (share_sum.cpp)
 //   real[int] s(12); dlmfsisolvestats(0, s);  // counts, times and memory of the kept factorization 0
 //   dlmfsisolvefree(0);                       // releases it
 //
@@ -25,6 +27,10 @@
 // is PORD, which fills least of what there is (rotating disk n=10: 6.95e6 entries in the factors, AMF
 // 7.84e6, AMD 8.17e6), and on tiny systems an approximate minimum degree (PORD forced on a 2 x 2 system
 // exits the program). The same ordering for any number of processes, so runs repeat bit for bit.
+//
+// With kept=true the call only solves: A is the matrix of the id's last factorization, not read again (its
+// size is checked), and a missing factorization is an error. A loop of solves with one matrix (the Schur
+// path's fluid solves, lib/solve.idp) so skips reading and comparing the shares, O(entries) per call.
 //
 // dlmfsisolve is collective over MPI_COMM_WORLD: every process calls it with the same id. Every error
 // (input that does not fit, on any process, or a failure of the engine) is raised on every process with
@@ -51,6 +57,7 @@
 #include <vector>
 
 #include "adapter.hpp"
+#include "share_sum.hpp"
 
 namespace {
 
@@ -293,10 +300,27 @@ std::string factor_and_solve(Kept& k, bool analyse, bool factor, std::vector<dou
   return err;
 }
 
+// x = A^-1 b with b the sum of the processes' b (reduced on the host), after the analysis and factorization
+// when asked; x broadcast to every process. A failure of the engine is raised on every process.
+void solve_sum(Kept& k, bool analyse, bool factor, const KN_<double>& b, KN<double>* x, int rank) {
+  const long n = k.n;
+  std::vector<double> share(n), rhs(rank == 0 ? n : 0);
+  for (long i = 0; i < n; ++i) share[i] = b[i];   // b may be a strided view
+  MPI_Reduce(share.data(), rank == 0 ? rhs.data() : nullptr, static_cast<int>(n), MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
+  const std::string err = factor_and_solve(k, analyse, factor, rhs, rank);
+  if (!err.empty()) {
+    k.terminate();   // the next call starts again from the analysis
+    dlmfsi_ff::fail(err);
+  }
+  x->resize(n);
+  if (rank == 0) std::copy(rhs.begin(), rhs.end(), &(*x)[0]);
+  MPI_Bcast(&(*x)[0], static_cast<int>(n), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+}
+
 class SolveOp : public E_F0mps {
  public:
   typedef long Result;
-  static const int n_name_param = 1;
+  static const int n_name_param = 2;
   static basicAC_F0::name_and_type name_param[n_name_param];
   Expression matrix, rhs, solution;
   Expression nargs[n_name_param];
@@ -314,13 +338,14 @@ class SolveOp : public E_F0mps {
   AnyType operator()(Stack stack) const;
 };
 
-basicAC_F0::name_and_type SolveOp::name_param[n_name_param] = {{"id", &typeid(long)}};
+basicAC_F0::name_and_type SolveOp::name_param[n_name_param] = {{"id", &typeid(long)}, {"kept", &typeid(bool)}};
 
 AnyType SolveOp::operator()(Stack stack) const {
   dlmfsi_ff::last_error().clear();
   if (!mpi_running())
     dlmfsi_ff::fail("dlmfsisolve: MPI is not running: run the script with FreeFem++-mpi (NP=2 bin/ff script.edp)");
   const long id = nargs[0] ? GetAny<long>((*nargs[0])(stack)) : 0L;
+  const bool solve_only = nargs[1] ? GetAny<bool>((*nargs[1])(stack)) : false;
   Matrice_Creuse<double>* a = GetAny<Matrice_Creuse<double>*>((*matrix)(stack));
   const KN_<double> b = GetAny<KN_<double> >((*rhs)(stack));
   KN<double>* x = GetAny<KN<double>*>((*solution)(stack));
@@ -335,12 +360,29 @@ AnyType SolveOp::operator()(Stack stack) const {
   try {
     if (id < 0 || id >= kMaxId) throw Failure("id=" + std::to_string(id) + " out of range (0 to " + std::to_string(kMaxId - 1) + ")");
     if (!x) throw Failure("the solution array is not defined");
-    read_share(a, b, n, rows, cols, values);
+    if (solve_only) {
+      auto it = kept().find(id);
+      if (it == kept().end() || !it->second->factored)
+        throw Failure("kept=true: no factorization is kept under id=" + std::to_string(id) +
+                      " (call once without kept=true)");
+      if (!a || a->N() != it->second->n || a->M() != it->second->n || b.N() != it->second->n)
+        throw Failure("kept=true: the matrix or the right-hand side is not of the kept factorization's size " +
+                      std::to_string(it->second->n));
+      n = it->second->n;
+      for (long i = 0; i < n; ++i)
+        if (!std::isfinite(b[i])) throw Failure("the right-hand side holds NaN or Inf (entry " + std::to_string(i) + ")");
+    } else {
+      read_share(a, b, n, rows, cols, values);
+    }
   } catch (...) {
     failure = dlmfsi_ff::current_message();
   }
   failure = agree(failure, n, id);
   if (!failure.empty()) dlmfsi_ff::fail(failure);
+  if (solve_only) {
+    solve_sum(*kept()[id], false, false, b, x, rank);
+    return SetAny<long>(0L);
+  }
 
   std::unique_ptr<Kept>& slot = kept()[id];
   if (!slot) slot.reset(new Kept);
@@ -369,19 +411,7 @@ AnyType SolveOp::operator()(Stack stack) const {
     set_controls(k.m);
   }
   k.n = static_cast<MUMPS_INT>(n);
-
-  // b = the sum of the shares, on the host.
-  std::vector<double> share(n), rhs(rank == 0 ? n : 0);
-  for (long i = 0; i < n; ++i) share[i] = b[i];   // b may be a strided view
-  MPI_Reduce(share.data(), rank == 0 ? rhs.data() : nullptr, static_cast<int>(n), MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
-  const std::string err = factor_and_solve(k, agreed == 2, agreed >= 1, rhs, rank);
-  if (!err.empty()) {
-    k.terminate();   // the next call starts again from the analysis
-    dlmfsi_ff::fail(err);
-  }
-  x->resize(n);
-  if (rank == 0) std::copy(rhs.begin(), rhs.end(), &(*x)[0]);
-  MPI_Bcast(&(*x)[0], static_cast<int>(n), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  solve_sum(k, agreed == 2, agreed >= 1, b, x, rank);
   return SetAny<long>(agreed >= 1 ? 1L : 0L);
 }
 
@@ -422,6 +452,7 @@ static void Load_Init() {
   Global.Add("dlmfsisolve", "(", new OneOperatorCode<SolveOp>);
   Global.Add("dlmfsisolvestats", "(", new OneOperator2_<long, long, KN<double>*>(solve_stats));
   Global.Add("dlmfsisolvefree", "(", new OneOperator1_<long, long>(solve_free));
+  dlmfsi_ff::add_share_sum();
   ff_atend(release_all);   // before FreeFem++-mpi finalizes MPI
 }
 
