@@ -194,32 +194,14 @@ void read_share(Matrice_Creuse<double>* a, const KN_<double>& b, long& n, std::v
   n = rn;
   for (long i = 0; i < b.N(); ++i)
     if (!std::isfinite(b[i])) throw Failure("the right-hand side holds NaN or Inf (entry " + std::to_string(i) + ")");
-  rows.clear();
-  cols.clear();
-  values.clear();
-  HashMatrix<int, double>* h = a->pHM();
-  if (!h) {
-    if (a->A) throw Failure("the matrix is not a sparse matrix FreeFEM assembled (no entries to read)");
-    return;
-  }
-  const int base = h->fortran ? 1 : 0;
-  const size_t nnz = h->nnz;
-  rows.reserve(h->half ? 2 * nnz : nnz);
-  cols.reserve(rows.capacity());
-  values.reserve(rows.capacity());
-  for (size_t k = 0; k < nnz; ++k) {
-    const int i = h->i[k] - base, j = h->j[k] - base;
-    const double v = h->aij[k];
-    if (!std::isfinite(v))
-      throw Failure("the matrix holds NaN or Inf (row " + std::to_string(i) + ", column " + std::to_string(j) + ")");
-    rows.push_back(i + 1);
-    cols.push_back(j + 1);
-    values.push_back(v);
-    if (h->half && i != j) {
-      rows.push_back(j + 1);
-      cols.push_back(i + 1);
-      values.push_back(v);
-    }
+  const std::vector<dlmfsi::Triplet> t = dlmfsi_ff::share_triplets(a, "dlmfsisolve");
+  rows.resize(t.size());
+  cols.resize(t.size());
+  values.resize(t.size());
+  for (size_t k = 0; k < t.size(); ++k) {
+    rows[k] = t[k].row + 1;
+    cols[k] = t[k].col + 1;
+    values[k] = t[k].value;
   }
 }
 

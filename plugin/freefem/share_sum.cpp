@@ -18,6 +18,7 @@
 #include <climits>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -30,28 +31,6 @@ namespace {
 struct Failure : std::runtime_error {
   explicit Failure(const std::string& what) : std::runtime_error("dlmfsisum: " + what) {}
 };
-
-// This process's share as 0-based triplets (a matrix stored as its lower half unfolded).
-std::vector<dlmfsi::Triplet> read_triplets(Matrice_Creuse<double>* a) {
-  std::vector<dlmfsi::Triplet> t;
-  if (!a) throw Failure("the matrix is not defined");
-  HashMatrix<int, double>* h = a->pHM();
-  if (!h) {
-    if (a->A) throw Failure("the matrix is not a sparse matrix FreeFEM assembled (no entries to read)");
-    return t;
-  }
-  const int base = h->fortran ? 1 : 0;
-  t.reserve(h->half ? 2 * h->nnz : h->nnz);
-  for (size_t k = 0; k < static_cast<size_t>(h->nnz); ++k) {
-    const int i = h->i[k] - base, j = h->j[k] - base;
-    const double v = h->aij[k];
-    if (!std::isfinite(v))
-      throw Failure("the matrix holds NaN or Inf (row " + std::to_string(i) + ", column " + std::to_string(j) + ")");
-    t.push_back({i, j, v});
-    if (h->half && i != j) t.push_back({j, i, v});
-  }
-  return t;
-}
 
 class SumOp : public E_F0mps {
  public:
@@ -86,7 +65,7 @@ AnyType SumOp::operator()(Stack stack) const {
   std::vector<dlmfsi::Triplet> share;
   try {
     Matrice_Creuse<double>* a = GetAny<Matrice_Creuse<double>*>((*matrix)(stack));
-    share = read_triplets(a);
+    share = dlmfsi_ff::share_triplets(a, "dlmfsisum");
     mine.rows = a->N();
     mine.cols = a->M();
     if (share.size() > static_cast<size_t>(INT_MAX / 2)) throw Failure("a share of more than 1e9 entries");
@@ -142,6 +121,28 @@ AnyType SumOp::operator()(Stack stack) const {
 }  // namespace
 
 namespace dlmfsi_ff {
+
+std::vector<dlmfsi::Triplet> share_triplets(Matrice_Creuse<double>* a, const std::string& caller) {
+  std::vector<dlmfsi::Triplet> t;
+  if (!a) throw std::runtime_error(caller + ": the matrix is not defined");
+  HashMatrix<int, double>* h = a->pHM();
+  if (!h) {
+    if (a->A) throw std::runtime_error(caller + ": the matrix is not a sparse matrix FreeFEM assembled (no entries to read)");
+    return t;
+  }
+  const int base = h->fortran ? 1 : 0;
+  t.reserve(h->half ? 2 * h->nnz : h->nnz);
+  for (size_t k = 0; k < static_cast<size_t>(h->nnz); ++k) {
+    const int i = h->i[k] - base, j = h->j[k] - base;
+    const double v = h->aij[k];
+    if (!std::isfinite(v))
+      throw std::runtime_error(caller + ": the matrix holds NaN or Inf (row " + std::to_string(i) + ", column " +
+                               std::to_string(j) + ")");
+    t.push_back({i, j, v});
+    if (h->half && i != j) t.push_back({j, i, v});
+  }
+  return t;
+}
 
 void add_share_sum() { Global.Add("dlmfsisum", "(", new OneOperatorCode<SumOp>); }
 
