@@ -144,12 +144,12 @@ std::string engine_error(const DMUMPS_STRUC_C& m, const char* phase) {
          ", INFOG(2)=" + std::to_string(detail) + ")";
 }
 
-// Every process passes its failure ("" if none) and its size; returns "" when none failed and the sizes
-// agree, otherwise the same message on every process, naming the process.
-std::string agree(const std::string& failure, long n, long id) {
+// Every process passes its failure ("" if none), its size, id and kept= flag; returns "" when none failed and
+// the rest agrees, otherwise the same message on every process, naming the process.
+std::string agree(const std::string& failure, long n, long id, bool solve_only) {
   struct Report {
     long n, id;
-    int failed;
+    int failed, solve_only;
     char message[400];
   };
   int size = 1;
@@ -158,6 +158,7 @@ std::string agree(const std::string& failure, long n, long id) {
   mine.n = n;
   mine.id = id;
   mine.failed = failure.empty() ? 0 : 1;
+  mine.solve_only = solve_only ? 1 : 0;
   std::strncpy(mine.message, failure.c_str(), sizeof mine.message - 1);
   std::vector<Report> all(size);
   MPI_Allgather(&mine, sizeof mine, MPI_BYTE, all.data(), sizeof mine, MPI_BYTE, MPI_COMM_WORLD);
@@ -171,6 +172,11 @@ std::string agree(const std::string& failure, long n, long id) {
     if (all[r].id != all[0].id)
       return "dlmfsisolve: the processes passed different ids (process 0: id=" + std::to_string(all[0].id) +
              ", process " + std::to_string(r) + ": id=" + std::to_string(all[r].id) + "); it is a collective call";
+  for (int r = 1; r < size; ++r)
+    if (all[r].solve_only != all[0].solve_only)
+      return "dlmfsisolve: the processes passed different kept= values (process 0: " +
+             std::string(all[0].solve_only ? "true" : "false") + ", process " + std::to_string(r) + ": " +
+             (all[r].solve_only ? "true" : "false") + "); it is a collective call";
   for (int r = 1; r < size; ++r)
     if (all[r].n != all[0].n)
       return "dlmfsisolve: the shares have different sizes (process 0: " + std::to_string(all[0].n) + ", process " +
@@ -359,7 +365,7 @@ AnyType SolveOp::operator()(Stack stack) const {
   } catch (...) {
     failure = dlmfsi_ff::current_message();
   }
-  failure = agree(failure, n, id);
+  failure = agree(failure, n, id, solve_only);
   if (!failure.empty()) dlmfsi_ff::fail(failure);
   if (solve_only) {
     solve_sum(*kept()[id], false, false, b, x, rank);
