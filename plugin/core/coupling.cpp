@@ -287,10 +287,14 @@ const CsrMatrix& CouplingAssembly::assemble_checked(const FluidSide& fluid, cons
                      static_cast<int>(static_cast<long long>(size) * (opt.part + 1) / opt.parts), share_);
   InPlaceSum* const in_place = matrix_.sum_on_last_pattern(rows, fluid.space().dof_count());
   if (in_place) {
-    if (threads > 1)
-      mark_later_rows(solid, elements, threads, in_place->later_rows(), owner_);
-    else
+    const long later_for[4] = {solid.serial(), opt.part, opt.parts, threads};
+    if (threads == 1) {
       in_place->later_rows().clear();
+      later_for_[0] = 0;
+    } else if (!std::equal(later_for, later_for + 4, later_for_)) {  // a time loop marks them once
+      mark_later_rows(solid, elements, threads, in_place->later_rows(), owner_);
+      std::copy(later_for, later_for + 4, later_for_);
+    }
     if (misses_.size() < static_cast<size_t>(threads) + 1) misses_.resize(threads + 1);
     if (later_.size() < static_cast<size_t>(threads)) later_.resize(threads);
   }

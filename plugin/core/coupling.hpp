@@ -92,6 +92,9 @@ class CouplingAssembly {
   // after the threads) and the entries of those rows; per row, the thread that met it first (scratch)
   std::vector<std::vector<Triplet>> misses_, later_;
   std::vector<int> owner_;
+  // what the rows summed later were marked for (they depend on the solid side, the part and the threads
+  // only, not on the map): solid side serial, part, parts, threads; serial 0 when none are marked
+  long later_for_[4] = {0, 0, 0, 0};
   CsrBuilder matrix_;
 };
 

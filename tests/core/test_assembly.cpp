@@ -83,7 +83,8 @@ TEST(CouplingAssembly, SmallStepsOnTheLastPatternGiveTheOneOffMatrices) {
   opt.c1 = 0;
   const FluidSide fluid(fluid_mesh, vf, opt.fluid_components);
   const SolidSide solid_side(solid, vs, opt.solid_components);
-  for (const std::vector<int>& threads : {std::vector<int>{1}, {2}, {1, 1, 2}}) {
+  // the thread counts cycle: the rows summed after the threads are marked again whenever the count changes
+  for (const std::vector<int>& threads : {std::vector<int>{1}, {2}, {1, 1, 2}, {2, 3}, {3, 1, 2}}) {
     CouplingAssembly assembly;
     CsrMatrix last;
     int changed = 0, kept = 0;
