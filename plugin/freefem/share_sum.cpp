@@ -102,16 +102,14 @@ AnyType SumOp::operator()(Stack stack) const {
   }
   if (static_cast<long long>(total) * static_cast<long long>(sizeof(dlmfsi::Triplet)) > INT_MAX)
     dlmfsi_ff::fail("dlmfsisum: the shares' entries exceed 2 GB in all");
-  std::vector<std::vector<dlmfsi::Triplet>> parts(size);
-  std::vector<dlmfsi::Triplet> gathered(total);
+  // Gathered in process order into one list: compress sums each entry's triplets in list order, so one
+  // list of the shares end to end is the same matrix as the shares as separate parts.
+  std::vector<std::vector<dlmfsi::Triplet>> gathered(1, std::vector<dlmfsi::Triplet>(total));
   MPI_Allgatherv(share.data(), static_cast<int>(share.size() * sizeof(dlmfsi::Triplet)), MPI_BYTE,
-                 gathered.data(), counts.data(), offsets.data(), MPI_BYTE, MPI_COMM_WORLD);
-  for (int r = 0; r < size; ++r) {
-    const dlmfsi::Triplet* first = gathered.data() + offsets[r] / sizeof(dlmfsi::Triplet);
-    parts[r].assign(first, first + all[r].count);
-  }
+                 gathered[0].data(), counts.data(), offsets.data(), MPI_BYTE, MPI_COMM_WORLD);
+  share = std::vector<dlmfsi::Triplet>();  // this process's copy is in gathered now
   const dlmfsi::CsrMatrix s =
-      dlmfsi::compress(static_cast<int>(all[0].rows), static_cast<int>(all[0].cols), parts);
+      dlmfsi::compress(static_cast<int>(all[0].rows), static_cast<int>(all[0].cols), gathered);
   MatriceMorse<double>* pa = new MatriceMorse<double>(s.rows, s.cols, 0, 0);
   pa->set(s.rows, s.cols, 0, s.value.size(), const_cast<int*>(s.start.data()), const_cast<int*>(s.column.data()),
           const_cast<double*>(s.value.data()), 0, 1);
