@@ -35,7 +35,8 @@ compare: deps build
 # Assembly speed over a sweep of sizes (built-in vs dlmfsi, threads, cost per piece, peak memory):
 # CSV + PNG under $(OUT)/bench; then the rotating disk on 1 and 2 processes (time per step split into
 # assembly, analysis, factorization and solve, peak memory per process) under $(OUT)/bench-mpi when the
-# distributed solve is built. About 30 + 40 minutes; QUICK=1 for tiny sizes.
+# distributed solve is built, at n = 5 and 30 (3 times) and n = 60 (once, 20 minutes, 7.7 GB peak). About 30 + 80
+# minutes; QUICK=1 for tiny sizes.
 bench: deps build
 	@cmake --build $(BUILD) --target coupling_bench -j $(JOBS)
 	DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) QUICK=$(QUICK) scripts/bench
