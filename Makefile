@@ -47,7 +47,7 @@ bench: deps build
 
 # Accuracy against speed, the scenes' Pareto fronts and the stability map: CSV + PNG under
 # $(OUT)/evidence; then the falling disk's convergence study and the FSI-3 studies (hours of CPU), and the 3D
-# falling sphere's (25 minutes, 7 GB).
+# falling sphere's (15 minutes, 7 GB).
 # STAGES="coupling scenes stability" runs some stages (about 20 minutes); QUICK=1 the same pipeline on tiny sizes.
 STAGES ?=
 evidence: deps build
