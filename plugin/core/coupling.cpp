@@ -54,30 +54,32 @@ class Assembler {
   Assembler& operator=(const Assembler&) = delete;
 
   void run(const int* first, const int* last) {
+    // The lists are the caller's (their memory is kept across calls), but their headers, which every
+    // push_back writes, sit side by side there for all threads: while it runs, this thread holds them in
+    // its own object (swapped, so no entry is copied).
+    Lists lists(in_place_ ? std::vector<std::vector<Triplet>*>{misses_, later_} : triplets_);
+    std::vector<std::vector<Triplet>*> mine;
+    for (std::vector<Triplet>& list : lists.own) mine.push_back(&list);
     // about two fluid triangles' columns per solid triangle: room for most runs without regrowing
     const size_t room = static_cast<size_t>(last - first) * 2 * block_.used_entries_per_fluid_element();
-    if (in_place_) {
-      misses_->clear();
-      later_->clear();
-    } else {
-      for (std::vector<Triplet>* list : triplets_) {
-        list->clear();
-        list->reserve(room / triplets_.size());
-      }
+    for (std::vector<Triplet>* list : mine) {
+      list->clear();
+      if (!in_place_) list->reserve(room / mine.size());
     }
     // The solid triangles come in Morton order, their data in the mesh's: a triangle's data is fetched
     // ahead (four triangles ahead by its number, its corners two ahead), while the one before is integrated.
     for (const int* k = first; k != last; ++k) {
       if (last - k > 4) prefetch_numbered(k[4]);
       if (last - k > 2) prefetch_corners(k[2]);
-      solid_triangle(*k);
+      solid_triangle(*k, mine.data());
     }
   }
 
   CouplingReport report;  // this thread's counts (the integrators count in it too)
 
  private:
-  void solid_triangle(int ks) {
+  // lists: this thread's triplets by row range, or (in place) its misses and later entries
+  void solid_triangle(int ks, std::vector<Triplet>* const* lists) {
     MappedTriangle mt;
     mt.prepare(solid_.mesh(), map_, ks);
     block_.start(solid_.dofs(ks));
@@ -92,10 +94,24 @@ class Assembler {
       report.worst_triangle = ks;
     }
     if (in_place_)
-      block_.scatter(*in_place_, *misses_, *later_);
+      block_.scatter(*in_place_, *lists[0], *lists[1]);
     else
-      block_.scatter(triplets_.data(), ranges_);
+      block_.scatter(lists, ranges_);
   }
+
+  // The caller's lists, swapped into own for the lifetime of this object.
+  struct Lists {
+    explicit Lists(std::vector<std::vector<Triplet>*> lists) : theirs(std::move(lists)), own(theirs.size()) {
+      for (size_t i = 0; i < own.size(); ++i) own[i].swap(*theirs[i]);
+    }
+    ~Lists() {
+      for (size_t i = 0; i < own.size(); ++i) own[i].swap(*theirs[i]);
+    }
+    Lists(const Lists&) = delete;
+    Lists& operator=(const Lists&) = delete;
+    std::vector<std::vector<Triplet>*> theirs;
+    std::vector<std::vector<Triplet>> own;
+  };
 
   // Hints for the caches: the data of solid triangle k found by its number, and its corners.
   void prefetch_numbered(int k) const {
@@ -298,18 +314,16 @@ const CsrMatrix& CouplingAssembly::assemble_checked(const FluidSide& fluid, cons
     if (misses_.size() < static_cast<size_t>(threads) + 1) misses_.resize(threads + 1);
     if (later_.size() < static_cast<size_t>(threads)) later_.resize(threads);
   }
-  std::vector<std::unique_ptr<Assembler>> assemblers;
-  for (int t = 0; t < threads; ++t) {
-    std::vector<std::vector<Triplet>*> lists_of_t;
-    for (int r = 0; r < ranges.n; ++r) lists_of_t.push_back(&triplets_[static_cast<size_t>(r) * threads + t]);
-    assemblers.push_back(std::make_unique<Assembler>(integrand, fluid, solid, fluid_map, opt, total,
-                                                     threads_[t]->search_on(fluid), std::move(lists_of_t), ranges,
-                                                     in_place, in_place ? &misses_[t] : nullptr,
-                                                     in_place ? &later_[t] : nullptr));
-  }
   total.setup_seconds = seconds_since(start);
 
-  run_shares(assemblers, elements);
+  std::vector<std::unique_ptr<Assembler>> assemblers;
+  run_shares(assemblers, threads, [&](int t) {
+    std::vector<std::vector<Triplet>*> lists_of_t;
+    for (int r = 0; r < ranges.n; ++r) lists_of_t.push_back(&triplets_[static_cast<size_t>(r) * threads + t]);
+    return std::make_unique<Assembler>(integrand, fluid, solid, fluid_map, opt, total, threads_[t]->search_on(fluid),
+                                       std::move(lists_of_t), ranges, in_place, in_place ? &misses_[t] : nullptr,
+                                       in_place ? &later_[t] : nullptr);
+  }, elements);
   total.pieces_seconds = seconds_since(start) - total.setup_seconds;
 
   for (const auto& a : assemblers) add_counts(a->report, total);

@@ -187,12 +187,11 @@ CsrMatrix assemble_coupling(const FluidSide3& fluid, const SolidSide3& solid, co
   // Threads only where no evaluation goes back to the caller's Basis or map (they need not be thread-safe).
   const bool parallel = fluid.basis().fitted() && solid.basis().fitted() && map.degree() >= 1;
   const int threads = parallel ? std::max(1, std::min(opt.threads, 64)) : 1;
-  std::vector<std::unique_ptr<Assembler3>> workers;
-  for (int t = 0; t < threads; ++t)
-    workers.push_back(std::make_unique<Assembler3>(integrand, fluid, solid, map, opt, total));
   auto since = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   total.setup_seconds = since();
-  run_shares(workers, share_in_order(solid, first, last));
+  std::vector<std::unique_ptr<Assembler3>> workers;
+  run_shares(workers, threads, [&](int) { return std::make_unique<Assembler3>(integrand, fluid, solid, map, opt, total); },
+             share_in_order(solid, first, last));
   total.pieces_seconds = since() - total.setup_seconds;
   std::vector<std::vector<Triplet>> parts;
   for (auto& w : workers) {

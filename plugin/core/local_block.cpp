@@ -32,6 +32,7 @@ void LocalBlock::scatter(std::vector<Triplet>& out) {
 
 void LocalBlock::scatter(std::vector<Triplet>* const* out, const RowRanges& ranges) {
   const size_t columns = column_dofs_.size();
+  if (columns == 0) return;  // no piece (the element lies outside the fluid mesh): entries_ may be empty
   for (int i : used_rows_) {
     const int row = row_dofs_[i];
     std::vector<Triplet>& to = ranges.n == 1 ? *out[0] : *out[ranges.of(row)];
@@ -49,6 +50,7 @@ void LocalBlock::scatter(InPlaceSum& sum, std::vector<Triplet>& misses, std::vec
   // pass along the matrix row. An entry's sum is over the solid elements in order whatever the order of the
   // columns within one element.
   const int columns = static_cast<int>(column_dofs_.size());
+  if (columns == 0) return;  // no piece (the element lies outside the fluid mesh): entries_ may be empty
   by_dof_.resize(columns);
   for (int c = 0; c < columns; ++c) {
     int j = c;

@@ -8,13 +8,21 @@
 
 namespace dlmfsi {
 
-// Worker: run(const int* first, const int* last) over the elements [first, last). Rethrows a thread's error.
-template <class Worker>
-void run_shares(const std::vector<std::unique_ptr<Worker>>& workers, const std::vector<int>& elements) {
-  const int threads = static_cast<int>(workers.size());
+// Worker: run(const int* first, const int* last) over the elements [first, last). make(t) returns worker t
+// (a std::unique_ptr<Worker>), called on the thread that runs it: what a worker allocates then comes from
+// that thread's memory, not next to another thread's, so that the threads do not write to the same cache
+// lines (with the workers made one after another on the calling thread, two threads' counters and scratch
+// shared lines, and two threads cost 12 % more CPU than one). The workers stay in workers for the caller.
+// Rethrows a thread's error.
+template <class Worker, class Make>
+void run_shares(std::vector<std::unique_ptr<Worker>>& workers, int threads, Make make,
+                const std::vector<int>& elements) {
+  workers.clear();
+  workers.resize(threads);
   const long long count = static_cast<long long>(elements.size());
   auto share = [&](int t) { return elements.data() + count * t / threads; };
   if (threads == 1) {
+    workers[0] = make(0);
     workers[0]->run(share(0), share(1));
     return;
   }
@@ -23,6 +31,7 @@ void run_shares(const std::vector<std::unique_ptr<Worker>>& workers, const std::
   for (int t = 0; t < threads; ++t)
     pool.emplace_back([&, t] {
       try {
+        workers[t] = make(t);
         workers[t]->run(share(t), share(t + 1));
       } catch (...) {
         errors[t] = std::current_exception();
