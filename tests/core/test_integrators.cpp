@@ -94,6 +94,26 @@ TEST(LocalBlock, ColumnsFollowTheFluidDofsAndScatterSkipsUnusedRowsAndZeros) {
   EXPECT_TRUE(out.empty());
 }
 
+// A solid element outside the fluid mesh has no piece: no column was ever entered (the block's entries
+// not even allocated), and both scatters add nothing (under make sanitize, reading the empty entries was
+// an error).
+TEST(LocalBlock, ABlockWithNoPieceScattersNothing) {
+  LocalBlock block(3, {0, 1, 2}, 3, {0, 1, 2});
+  block.start(Rows{}, 0);
+  std::vector<Triplet> out;
+  std::vector<Triplet>* lists[1] = {&out};
+  block.scatter(lists, RowRanges{1, 1});
+  EXPECT_TRUE(out.empty());
+  CsrBuilder builder;
+  builder.build(20, 4, {std::vector<Triplet>{{10, 1, 1.0}}});
+  InPlaceSum* sum = builder.sum_on_last_pattern(20, 4);
+  ASSERT_NE(sum, nullptr);
+  std::vector<Triplet> misses, later;
+  block.scatter(*sum, misses, later);
+  EXPECT_TRUE(misses.empty());
+  EXPECT_TRUE(later.empty());
+}
+
 TEST(LocalBlock, KeepsItsEntriesWhileColumnsGrow) {
   LocalBlock block(3, {0, 1, 2}, 3, {0, 1, 2});
   block.start(Rows{}, 0);
