@@ -12,6 +12,7 @@
 #include "local_block.hpp"
 #include "predicates3d.hpp"
 #include "run_shares.hpp"
+#include "side_serial.hpp"
 #include "validation.hpp"
 
 namespace dlmfsi {
@@ -35,23 +36,28 @@ namespace {
 class Assembler3 {
  public:
   Assembler3(const Integrand3& integrand, const FluidSide3& fluid, const SolidSide3& solid, const SolidMap3& map,
-             const CouplingOptions& opt, const CouplingReport3& degrees)
-      : solid_(solid), map_(map), search_(fluid.grid()),
+             const CouplingOptions& opt, const CouplingReport3& degrees, FluidSearch3& search,
+             std::vector<Triplet>& triplets)
+      : solid_(solid), map_(map), theirs_(triplets),
         block_(solid.space().local_dofs(), integrand.pairs.used_multiplier_dofs(), fluid.space().local_dofs(),
                integrand.pairs.used_fluid_dofs()) {
     report.fluid_degree = degrees.fluid_degree;
     report.solid_degree = degrees.solid_degree;
     report.rule_degree = degrees.rule_degree;
-    integrator_ = choose_integrator(integrand, fluid, search_, opt, report);
+    integrator_ = choose_integrator(integrand, fluid, search, opt, report);
   }
   Assembler3(const Assembler3&) = delete;
   Assembler3& operator=(const Assembler3&) = delete;
 
+  // The caller's triplet list is held here while the thread runs (swapped: its memory is kept for the next
+  // call, and the header that every push_back writes is not beside another thread's).
   void run(const int* first, const int* last) {
+    triplets_.swap(theirs_);
+    triplets_.clear();
     for (const int* k = first; k != last; ++k) solid_tetrahedron(*k);
+    triplets_.swap(theirs_);
   }
 
-  std::vector<Triplet> triplets;
   CouplingReport3 report;  // this thread's counts (the integrators count in it too)
 
  private:
@@ -68,12 +74,13 @@ class Assembler3 {
       report.worst_outside = outside;
       report.worst_tetrahedron = ks;
     }
-    block_.scatter(triplets);
+    block_.scatter(triplets_);
   }
 
   const SolidSide3& solid_;
   const SolidMap3& map_;
-  FluidSearch3 search_;
+  std::vector<Triplet>& theirs_;
+  std::vector<Triplet> triplets_;
   LocalBlock block_;
   std::unique_ptr<TetrahedronIntegrator> integrator_;
 };
@@ -148,7 +155,7 @@ std::vector<int> share_in_order(const SolidSide3& solid, int first, int last) {
 
 
 FluidSide3::FluidSide3(Mesh3 mesh, const Basis3& space, const std::vector<int>& components)
-    : space_(space, morton_order(checked(mesh))), mesh_(renumbered(mesh, space_.original())), components_(components),
+    : serial_(next_side_serial()), space_(space, morton_order(checked(mesh))), mesh_(renumbered(mesh, space_.original())), components_(components),
       degree_((check_components(space, components, "fluid", "fluid space"), polynomial_degree(space, components))),
       grid_(mesh_), basis_(space_, mesh_, degree_, components),
       dofs_(static_cast<size_t>(mesh_.size()) * space.local_dofs()) {
@@ -161,8 +168,32 @@ SolidSide3::SolidSide3(Mesh3 mesh, const Basis3& multiplier, const std::vector<i
                polynomial_degree(multiplier, components))),
       basis_(multiplier, mesh_, degree_, components), order_(morton_order(mesh_)) {}
 
+// A thread's memory kept across calls: the search with its marks over the fluid side it was made for.
+struct CouplingAssembly3::Thread {
+  long fluid_serial = -1;
+  std::unique_ptr<FluidSearch3> search;
+
+  FluidSearch3& search_on(const FluidSide3& fluid) {
+    if (!search || fluid_serial != fluid.serial()) {
+      search = std::make_unique<FluidSearch3>(fluid.grid());
+      fluid_serial = fluid.serial();
+    }
+    return *search;
+  }
+};
+
+CouplingAssembly3::CouplingAssembly3() = default;
+CouplingAssembly3::~CouplingAssembly3() = default;
+
 CsrMatrix assemble_coupling(const FluidSide3& fluid, const SolidSide3& solid, const SolidMap3& map,
                             const CouplingOptions& opt, CouplingReport3* report) {
+  CouplingAssembly3 assembly;
+  assembly.assemble(fluid, solid, map, opt, report);
+  return assembly.release();
+}
+
+const CsrMatrix& CouplingAssembly3::assemble(const FluidSide3& fluid, const SolidSide3& solid, const SolidMap3& map,
+                                             const CouplingOptions& opt, CouplingReport3* report) {
   const auto start = std::chrono::steady_clock::now();
   check_options(fluid.space(), solid.space(), opt);
   if (opt.fluid_components != fluid.components()) throw Error("the fluid side was prepared for other components");
@@ -187,19 +218,21 @@ CsrMatrix assemble_coupling(const FluidSide3& fluid, const SolidSide3& solid, co
   // Threads only where no evaluation goes back to the caller's Basis or map (they need not be thread-safe).
   const bool parallel = fluid.basis().fitted() && solid.basis().fitted() && map.degree() >= 1;
   const int threads = parallel ? std::max(1, std::min(opt.threads, 64)) : 1;
+  while (static_cast<int>(threads_.size()) < threads) threads_.push_back(std::make_unique<Thread>());
+  if (static_cast<int>(triplets_.size()) < threads) triplets_.resize(threads);
   auto since = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   total.setup_seconds = since();
   std::vector<std::unique_ptr<Assembler3>> workers;
-  run_shares(workers, threads, [&](int) { return std::make_unique<Assembler3>(integrand, fluid, solid, map, opt, total); },
-             share_in_order(solid, first, last));
+  run_shares(workers, threads, [&](int t) {
+    return std::make_unique<Assembler3>(integrand, fluid, solid, map, opt, total, threads_[t]->search_on(fluid),
+                                        triplets_[t]);
+  }, share_in_order(solid, first, last));
   total.pieces_seconds = since() - total.setup_seconds;
-  std::vector<std::vector<Triplet>> parts;
-  for (auto& w : workers) {
-    add_counts(w->report, total);
-    parts.push_back(std::move(w->triplets));
-  }
+  for (auto& w : workers) add_counts(w->report, total);
   check_outside(opt, total);
-  CsrMatrix m = compress(solid.space().dof_count(), fluid.space().dof_count(), parts);
+  // build reads the first `threads` lists (in thread order: the sums of compress's order for any count)
+  if (static_cast<int>(triplets_.size()) > threads) triplets_.resize(threads);
+  const CsrMatrix& m = matrix_.build(solid.space().dof_count(), fluid.space().dof_count(), triplets_);
   total.seconds = since();
   if (report) *report = total;
   return m;

@@ -3,6 +3,7 @@
 //   B_ij = int_{solid} c1 grad_s psi_i : grad_s (phi_j o X) + c2 psi_i . (phi_j o X) ds,
 // psi_i the multiplier basis (rows), phi_j the fluid basis (columns), summed over the paired components.
 #pragma once
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -42,8 +43,11 @@ class FluidSide3 {
   const FluidGrid3& grid() const { return grid_; }
   const PolynomialBasis3& basis() const { return basis_; }
   const int* dofs(int k) const { return &dofs_[static_cast<size_t>(k) * space_.local_dofs()]; }
+  // No two sides of one process have the same serial (side_serial.hpp).
+  long serial() const { return serial_; }
 
  private:
+  long serial_;
   RenumberedBasis3 space_;  // holds the order; before mesh_, which is built from it
   Mesh3 mesh_;
   std::vector<int> components_;
@@ -92,5 +96,25 @@ class SolidSide3 {
 // fluid mesh by more than outside_tol of its volume (unless drop_outside).
 CsrMatrix assemble_coupling(const FluidSide3& fluid, const SolidSide3& solid, const SolidMap3& map,
                             const CouplingOptions& options, CouplingReport3* report = nullptr);
+
+// The same, keeping its memory from one call to the next (a time loop): each thread's search (with its
+// marks over the fluid side), its triplets and the matrix's arrays are reused, grown and never shrunk.
+class CouplingAssembly3 {
+ public:
+  CouplingAssembly3();
+  ~CouplingAssembly3();
+  CouplingAssembly3(const CouplingAssembly3&) = delete;
+  CouplingAssembly3& operator=(const CouplingAssembly3&) = delete;
+  // assemble_coupling(fluid, solid, map, options, report); the matrix stays valid until the next call.
+  const CsrMatrix& assemble(const FluidSide3& fluid, const SolidSide3& solid, const SolidMap3& map,
+                            const CouplingOptions& options, CouplingReport3* report = nullptr);
+  CsrMatrix release() { return matrix_.release(); }
+
+ private:
+  struct Thread;
+  std::vector<std::unique_ptr<Thread>> threads_;
+  std::vector<std::vector<Triplet>> triplets_;  // per thread
+  CsrBuilder matrix_;
+};
 
 }  // namespace dlmfsi

@@ -1,19 +1,14 @@
 #include "sides.hpp"
 
-#include <atomic>
 #include <utility>
 
 #include "errors.hpp"
+#include "side_serial.hpp"
 #include "validation.hpp"
 
 namespace dlmfsi {
 
 namespace {
-
-long next_serial() {
-  static std::atomic<long> serial{0};
-  return ++serial;
-}
 
 const Mesh& checked(const Mesh& mesh) {
   if (mesh.size() == 0) throw Error("empty fluid mesh");
@@ -24,7 +19,7 @@ const Mesh& checked(const Mesh& mesh) {
 }  // namespace
 
 FluidSide::FluidSide(Mesh mesh, const Basis& space, const std::vector<int>& components)
-    : serial_(next_serial()), scale_(scale_exponent(checked(mesh))), scaled_space_(space, scale_), space_(scaled_space_, morton_order(mesh)),
+    : serial_(next_side_serial()), scale_(scale_exponent(checked(mesh))), scaled_space_(space, scale_), space_(scaled_space_, morton_order(mesh)),
       mesh_(renumbered(scaled(std::move(mesh), scale_), space_.original())),
       components_(components),
       degree_((check_components(space, components, "fluid", "fluid space"), polynomial_degree(space, components))), grid_(mesh_),
@@ -34,7 +29,7 @@ FluidSide::FluidSide(Mesh mesh, const Basis& space, const std::vector<int>& comp
 }
 
 SolidSide::SolidSide(Mesh mesh, const Basis& multiplier, const std::vector<int>& components)
-    : serial_(next_serial()), mesh_(std::move(mesh)), space_(multiplier), components_(components),
+    : serial_(next_side_serial()), mesh_(std::move(mesh)), space_(multiplier), components_(components),
       degree_((check_components(multiplier, components, "solid", "multiplier space"),
                polynomial_degree(multiplier, components))),
       basis_(multiplier, mesh_, degree_, components), order_(morton_order(mesh_)),

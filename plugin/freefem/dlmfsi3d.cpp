@@ -71,6 +71,13 @@ SolidCache3& solid_cache() {
   return *cache;
 }
 
+// The assembly's memory (triplets, search marks, compressed rows), kept from call to call next to the
+// sides: a time loop takes no fresh memory for it.
+dlmfsi::CouplingAssembly3& assembly3() {
+  static dlmfsi::CouplingAssembly3* kept = new dlmfsi::CouplingAssembly3;  // never destroyed, as the caches
+  return *kept;
+}
+
 class Dlmfsi3Op : public E_F0mps {
  public:
   typedef newpMatrice_Creuse<double> Result;
@@ -182,13 +189,14 @@ AnyType Dlmfsi3Op::operator()(Stack stack) const {
       for (int a = 0; a < 3; ++a) fits[a] = cache.map_fit(*sp[a], comps[a], degree);
     const dlmfsi::FieldMap3 xmap(solid.mesh(), spaces, values, comps, fits);
     dlmfsi::CouplingReport3 report;
-    dlmfsi::CsrMatrix b = dlmfsi::assemble_coupling(fluid, solid, xmap, opt, &report);
+    const dlmfsi::CsrMatrix& b = assembly3().assemble(fluid, solid, xmap, opt, &report);
     if (verbosity > 1) cout << report.summary() << endl;
     if (opt.drop_outside && report.outside_volume > 0 && verbosity > 0)
       cout << "dlmfsi: dropped volume outside the fluid mesh " << report.outside_volume << " (solid tetrahedron "
            << report.worst_tetrahedron << " worst)" << endl;
     MatriceMorse<double>* pa = new MatriceMorse<double>(b.rows, b.cols, 0, 0);
-    pa->set(b.rows, b.cols, 0, b.value.size(), b.start.data(), b.column.data(), b.value.data(), 0, 1);
+    pa->set(b.rows, b.cols, 0, b.value.size(), const_cast<int*>(b.start.data()), const_cast<int*>(b.column.data()),
+            const_cast<double*>(b.value.data()), 0, 1);
     return SetAny<newpMatrice_Creuse<double> >(newpMatrice_Creuse<double>(stack, pa));
   });
 }
