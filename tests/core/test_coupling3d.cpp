@@ -246,6 +246,36 @@ TEST(Coupling3d, ThreadsGiveTheSameMatrixBothMethods) {
   }
 }
 
+// An assembly kept across calls (a time loop: the map moves; then another fluid side, then another thread
+// count) gives each call the matrix a fresh assembly gives, bit for bit: nothing kept leaks into the next.
+TEST(Coupling3d, AKeptAssemblyGivesEachCallTheFreshMatrix) {
+  const Mesh3 fluid = box_mesh(4, 4, 4, {-1, -1, -1}, {2, 2, 2}, 0.2, 13);
+  const Mesh3 other_fluid = box_mesh(3, 4, 5, {-1, -1, -1}, {2, 2, 2}, 0.15, 17);
+  const Mesh3 solid = box_mesh(3, 3, 3, {-0.5, -0.5, -0.5}, {1, 1, 1}, 0.2, 14);
+  const P2Tet f(fluid), g(other_fluid);
+  const P1Tet s(solid);
+  const FluidSide3 fs(fluid, f, {0}), gs(other_fluid, g, {0});
+  const SolidSide3 ss(solid, s, {0});
+  for (auto method : {CouplingOptions::Method::Exact, CouplingOptions::Method::Quadrature}) {
+    CouplingAssembly3 kept;
+    int call = 0;
+    for (const FluidSide3* side : {&fs, &fs, &gs, &gs})
+      for (int threads : {1, 2}) {
+        double a[3][3];
+        rotation({1, 0, 1}, 0.3 + 0.01 * call++, a);
+        const AffineMap3 map(solid, a, {0, 0.05, 0});
+        CouplingOptions opt;
+        opt.method = method;
+        opt.threads = threads;
+        const CsrMatrix& again = kept.assemble(*side, ss, map, opt);
+        const CsrMatrix fresh = assemble_coupling(*side, ss, map, opt);
+        EXPECT_EQ(again.start, fresh.start) << "call " << call;
+        EXPECT_EQ(again.column, fresh.column) << "call " << call;
+        EXPECT_EQ(again.value, fresh.value) << "call " << call;
+      }
+  }
+}
+
 // The quadrature method on data that is one polynomial over the whole fluid mesh (no kinks): its rule, of
 // the product's degree, is exact, so it meets the same independent reference as the exact method; and on
 // kinked (P1 interpolated) data it is close to the exact method but not equal (a quadrature error).
