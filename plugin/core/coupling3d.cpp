@@ -155,7 +155,8 @@ std::vector<int> share_in_order(const SolidSide3& solid, int first, int last) {
 
 
 FluidSide3::FluidSide3(Mesh3 mesh, const Basis3& space, const std::vector<int>& components)
-    : serial_(next_side_serial()), space_(space, morton_order(checked(mesh))), mesh_(renumbered(mesh, space_.original())), components_(components),
+    : serial_(next_side_serial()), space_(space, morton_order(checked(mesh))),
+      mesh_(renumbered(mesh, space_.original())), components_(components),
       degree_((check_components(space, components, "fluid", "fluid space"), polynomial_degree(space, components))),
       grid_(mesh_), basis_(space_, mesh_, degree_, components),
       dofs_(static_cast<size_t>(mesh_.size()) * space.local_dofs()) {
