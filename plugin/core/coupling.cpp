@@ -10,6 +10,7 @@
 #include "component_pairs.hpp"
 #include "errors.hpp"
 #include "integrator.hpp"
+#include "kept_search.hpp"
 #include "local_block.hpp"
 #include "run_shares.hpp"
 #include "validation.hpp"
@@ -234,19 +235,8 @@ CsrMatrix assemble_on_solid(const Mesh& solid, const Basis& multiplier, const Co
 
 }  // namespace
 
-// A thread's memory kept across calls: the search with its marks over the fluid side it was made for.
-struct CouplingAssembly::Thread {
-  long fluid_serial = -1;
-  std::unique_ptr<FluidSearch> search;
-
-  FluidSearch& search_on(const FluidSide& fluid) {
-    if (!search || fluid_serial != fluid.serial()) {
-      search = std::make_unique<FluidSearch>(fluid.grid());
-      fluid_serial = fluid.serial();
-    }
-    return *search;
-  }
-};
+// A thread's memory kept across calls: its search (kept_search.hpp).
+struct CouplingAssembly::Thread : KeptSearch<FluidSearch, FluidSide> {};
 
 // The access of assemble_coupling's other forms to the unchecked assembly.
 struct AssemblyAccess {
@@ -320,7 +310,7 @@ const CsrMatrix& CouplingAssembly::assemble_checked(const FluidSide& fluid, cons
   run_shares(assemblers, threads, [&](int t) {
     std::vector<std::vector<Triplet>*> lists_of_t;
     for (int r = 0; r < ranges.n; ++r) lists_of_t.push_back(&triplets_[static_cast<size_t>(r) * threads + t]);
-    return std::make_unique<Assembler>(integrand, fluid, solid, fluid_map, opt, total, threads_[t]->search_on(fluid),
+    return std::make_unique<Assembler>(integrand, fluid, solid, fluid_map, opt, total, threads_[t]->on(fluid),
                                        std::move(lists_of_t), ranges, in_place, in_place ? &misses_[t] : nullptr,
                                        in_place ? &later_[t] : nullptr);
   }, elements);

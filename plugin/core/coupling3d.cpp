@@ -9,6 +9,7 @@
 #include "component_pairs.hpp"
 #include "errors.hpp"
 #include "integrator3d.hpp"
+#include "kept_search.hpp"
 #include "local_block.hpp"
 #include "predicates3d.hpp"
 #include "run_shares.hpp"
@@ -169,19 +170,8 @@ SolidSide3::SolidSide3(Mesh3 mesh, const Basis3& multiplier, const std::vector<i
                polynomial_degree(multiplier, components))),
       basis_(multiplier, mesh_, degree_, components), order_(morton_order(mesh_)) {}
 
-// A thread's memory kept across calls: the search with its marks over the fluid side it was made for.
-struct CouplingAssembly3::Thread {
-  long fluid_serial = -1;
-  std::unique_ptr<FluidSearch3> search;
-
-  FluidSearch3& search_on(const FluidSide3& fluid) {
-    if (!search || fluid_serial != fluid.serial()) {
-      search = std::make_unique<FluidSearch3>(fluid.grid());
-      fluid_serial = fluid.serial();
-    }
-    return *search;
-  }
-};
+// A thread's memory kept across calls: its search (kept_search.hpp).
+struct CouplingAssembly3::Thread : KeptSearch<FluidSearch3, FluidSide3> {};
 
 CouplingAssembly3::CouplingAssembly3() = default;
 CouplingAssembly3::~CouplingAssembly3() = default;
@@ -225,7 +215,7 @@ const CsrMatrix& CouplingAssembly3::assemble(const FluidSide3& fluid, const Soli
   total.setup_seconds = since();
   std::vector<std::unique_ptr<Assembler3>> workers;
   run_shares(workers, threads, [&](int t) {
-    return std::make_unique<Assembler3>(integrand, fluid, solid, map, opt, total, threads_[t]->search_on(fluid),
+    return std::make_unique<Assembler3>(integrand, fluid, solid, map, opt, total, threads_[t]->on(fluid),
                                         triplets_[t]);
   }, share_in_order(solid, first, last));
   total.pieces_seconds = since() - total.setup_seconds;
