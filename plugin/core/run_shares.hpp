@@ -11,9 +11,8 @@ namespace dlmfsi {
 // Worker: run(const int* first, const int* last) over the elements [first, last). make(t) returns worker t
 // (a std::unique_ptr<Worker>), called on the thread that runs it: what a worker allocates then comes from
 // that thread's memory, not next to another thread's, so that the threads do not write to the same cache
-// lines (with the workers made one after another on the calling thread, two threads' counters and scratch
-// shared lines, and two threads cost 12 % more CPU than one). The workers stay in workers for the caller.
-// Rethrows a thread's error.
+// lines (workers made one after another on one thread put their counters and scratch side by side). The
+// workers stay in workers for the caller. Rethrows a thread's error.
 template <class Worker, class Make>
 void run_shares(std::vector<std::unique_ptr<Worker>>& workers, int threads, Make make,
                 const std::vector<int>& elements) {
