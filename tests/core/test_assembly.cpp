@@ -1,14 +1,17 @@
 // The assembly kept across calls (CouplingAssembly): a time loop's calls give what one-off calls give, bit
 // for bit, whatever changes between them (the map, the thread count, the fluid side), and the values are
-// written in place exactly when the pattern is the last call's.
+// written in place exactly when the pattern is the last call's. And the threads of one call (run_shares).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
+#include <thread>
 #include <vector>
 
 #include "coupling.hpp"
 #include "errors.hpp"
 #include "field_map.hpp"
+#include "run_shares.hpp"
 #include "support.hpp"
 
 using namespace dlmfsi;
@@ -113,5 +116,45 @@ TEST(CouplingAssembly, SmallStepsOnTheLastPatternGiveTheOneOffMatrices) {
     }
     EXPECT_GE(changed, 3);
     EXPECT_GE(kept, 5);
+  }
+}
+
+namespace {
+
+// A worker that records the thread it was made on and the one it ran on.
+struct Recorder {
+  std::thread::id made = std::this_thread::get_id(), ran;
+  int first = -1, count = 0;
+  void run(const int* begin, const int* end) {
+    ran = std::this_thread::get_id();
+    first = begin == end ? -1 : *begin;
+    count = static_cast<int>(end - begin);
+  }
+};
+
+}  // namespace
+
+// run_shares makes each worker on the thread that runs it (so that what a worker allocates is not next to
+// another thread's memory: no shared cache line between the threads), not on the caller's; the shares are
+// contiguous and cover the elements in order.
+TEST(RunShares, EachWorkerIsMadeOnTheThreadThatRunsIt) {
+  const std::vector<int> elements = {10, 11, 12, 13, 14, 15, 16};
+  for (int threads : {1, 2, 3}) {
+    std::vector<std::unique_ptr<Recorder>> workers;
+    run_shares(workers, threads, [](int) { return std::make_unique<Recorder>(); }, elements);
+    ASSERT_EQ(static_cast<int>(workers.size()), threads);
+    int next = 10, total = 0;
+    for (int t = 0; t < threads; ++t) {
+      EXPECT_EQ(workers[t]->made, workers[t]->ran) << threads << " threads, worker " << t;
+      if (threads > 1) {
+        EXPECT_NE(workers[t]->made, std::this_thread::get_id()) << threads << " threads, worker " << t;
+      }
+      if (workers[t]->count > 0) {
+        EXPECT_EQ(workers[t]->first, next);
+      }
+      next += workers[t]->count;
+      total += workers[t]->count;
+    }
+    EXPECT_EQ(total, static_cast<int>(elements.size()));
   }
 }
