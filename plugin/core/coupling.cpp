@@ -55,24 +55,17 @@ class Assembler {
   Assembler& operator=(const Assembler&) = delete;
 
   void run(const int* first, const int* last) {
-    // The lists are the caller's (their memory is kept across calls), but their headers, which every
-    // push_back writes, sit side by side there for all threads: while it runs, this thread holds them in
-    // its own object (swapped, so no entry is copied).
-    Lists lists(in_place_ ? std::vector<std::vector<Triplet>*>{misses_, later_} : triplets_);
-    std::vector<std::vector<Triplet>*> mine;
-    for (std::vector<Triplet>& list : lists.own) mine.push_back(&list);
+    HeldLists<Triplet> held(in_place_ ? std::vector<std::vector<Triplet>*>{misses_, later_} : triplets_);
     // about two fluid triangles' columns per solid triangle: room for most runs without regrowing
     const size_t room = static_cast<size_t>(last - first) * 2 * block_.used_entries_per_fluid_element();
-    for (std::vector<Triplet>* list : mine) {
-      list->clear();
-      if (!in_place_) list->reserve(room / mine.size());
-    }
+    if (!in_place_)
+      for (size_t i = 0; i < held.size(); ++i) held[i].reserve(room / held.size());
     // The solid triangles come in Morton order, their data in the mesh's: a triangle's data is fetched
     // ahead (four triangles ahead by its number, its corners two ahead), while the one before is integrated.
     for (const int* k = first; k != last; ++k) {
       if (last - k > 4) prefetch_numbered(k[4]);
       if (last - k > 2) prefetch_corners(k[2]);
-      solid_triangle(*k, mine.data());
+      solid_triangle(*k, held.lists());
     }
   }
 
@@ -99,20 +92,6 @@ class Assembler {
     else
       block_.scatter(lists, ranges_);
   }
-
-  // The caller's lists, swapped into own for the lifetime of this object.
-  struct Lists {
-    explicit Lists(std::vector<std::vector<Triplet>*> lists) : theirs(std::move(lists)), own(theirs.size()) {
-      for (size_t i = 0; i < own.size(); ++i) own[i].swap(*theirs[i]);
-    }
-    ~Lists() {
-      for (size_t i = 0; i < own.size(); ++i) own[i].swap(*theirs[i]);
-    }
-    Lists(const Lists&) = delete;
-    Lists& operator=(const Lists&) = delete;
-    std::vector<std::vector<Triplet>*> theirs;
-    std::vector<std::vector<Triplet>> own;
-  };
 
   // Hints for the caches: the data of solid triangle k found by its number, and its corners.
   void prefetch_numbered(int k) const {

@@ -50,19 +50,15 @@ class Assembler3 {
   Assembler3(const Assembler3&) = delete;
   Assembler3& operator=(const Assembler3&) = delete;
 
-  // The caller's triplet list is held here while the thread runs (swapped: its memory is kept for the next
-  // call, and the header that every push_back writes is not beside another thread's).
   void run(const int* first, const int* last) {
-    triplets_.swap(theirs_);
-    triplets_.clear();
-    for (const int* k = first; k != last; ++k) solid_tetrahedron(*k);
-    triplets_.swap(theirs_);
+    HeldLists<Triplet> held({&theirs_});
+    for (const int* k = first; k != last; ++k) solid_tetrahedron(*k, held[0]);
   }
 
   CouplingReport3 report;  // this thread's counts (the integrators count in it too)
 
  private:
-  void solid_tetrahedron(int ks) {
+  void solid_tetrahedron(int ks, std::vector<Triplet>& triplets) {
     MappedTet mt;
     mt.prepare(solid_.mesh(), map_, ks);
     block_.start(solid_.space(), ks);
@@ -75,13 +71,12 @@ class Assembler3 {
       report.worst_outside = outside;
       report.worst_tetrahedron = ks;
     }
-    block_.scatter(triplets_);
+    block_.scatter(triplets);
   }
 
   const SolidSide3& solid_;
   const SolidMap3& map_;
-  std::vector<Triplet>& theirs_;
-  std::vector<Triplet> triplets_;
+  std::vector<Triplet>& theirs_;  // the caller's list, held while the thread runs
   LocalBlock block_;
   std::unique_ptr<TetrahedronIntegrator> integrator_;
 };
