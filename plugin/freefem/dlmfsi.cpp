@@ -66,6 +66,17 @@ FluidCache& fluid_cache() {
   return *cache;
 }
 
+}  // namespace
+
+// The fluid side of dlmfsiconvect (convect.cpp), kept apart from the coupling's, so that the two calls of a
+// time step do not take turns rebuilding one cache when their components differ.
+const dlmfsi::FluidSide& dlmfsi_convect_side(const FESpace& vh, const std::vector<int>& components) {
+  static FluidCache* cache = new FluidCache;  // never destroyed, as the coupling's
+  return cache->get(vh, components);
+}
+
+namespace {
+
 // The solid side (solid mesh, multiplier fit) and the fits of the map's spaces of the last calls (the two
 // most recently used).
 struct SolidCache : dlmfsi_ff::SolidCacheOf<FESpace, SpaceBasis, dlmfsi::SolidSide, dlmfsi::PolynomialBasis, 2> {
@@ -275,6 +286,7 @@ class LastErrorOp : public E_F0mps {
 
 void dlmfsi_register_supermesh();  // plugin/freefem/supermesh.cpp
 void dlmfsi_register_3d();         // plugin/freefem/dlmfsi3d.cpp
+void dlmfsi_register_convect();    // plugin/freefem/convect.cpp
 
 static void Load_Init() {
   Global.Add("dlmfsi", "(", new OneOperatorCode<DlmfsiOp>);
@@ -285,6 +297,7 @@ static void Load_Init() {
   Global.Add("dlmfsi", "(", new OneOperatorCode<NotTwoD<pfesL*, pfesL*> >);
   Global.Add("dlmfsilasterror", "(", new OneOperatorCode<LastErrorOp>);
   dlmfsi_register_supermesh();
+  dlmfsi_register_convect();
 }
 
 LOADFUNC(Load_Init)

@@ -60,6 +60,37 @@ class P1 : public Basis {
   const Mesh& m_;
 };
 
+// [P1, P1] on a mesh: local dofs 0-2 carry component 0 and 3-5 component 1 (FreeFEM's order), global dof
+// 2 v + c; component 1's functions are scale times component 0's.
+class VectorP1 : public Basis {
+ public:
+  explicit VectorP1(const Mesh& m, double scale = 1) : p1_(m), m_(m), scale_(scale) {}
+  int components() const override { return 2; }
+  int dof_count() const override { return 2 * static_cast<int>(m_.vertices.size()); }
+  int local_dofs() const override { return 6; }
+  void component_dofs(int c, int& f, int& l) const override {
+    f = 3 * c;
+    l = 3 * c + 3;
+  }
+  void dofs(int k, int* g) const override {
+    for (int c = 0; c < 2; ++c)
+      for (int i = 0; i < 3; ++i) g[3 * c + i] = 2 * m_.triangles[k][i] + c;
+  }
+  void evaluate(int k, Point xi, double* out) const override {
+    double scalar[9];
+    p1_.evaluate(k, xi, scalar);
+    for (int df = 0; df < 6; ++df)
+      for (int c = 0; c < 2; ++c)
+        for (int d = 0; d < 3; ++d)
+          out[(df * 2 + c) * 3 + d] = df / 3 == c ? (c == 1 ? scale_ : 1) * scalar[(df % 3) * 3 + d] : 0;
+  }
+
+ private:
+  P1 p1_;
+  const Mesh& m_;
+  double scale_;
+};
+
 // An affine map X(s) = A s + b given on the solid mesh.
 class AffineMap : public SolidMap {
  public:

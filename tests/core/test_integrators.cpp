@@ -22,37 +22,6 @@ using namespace dlmfsi;
 
 namespace {
 
-// [P1, P1] on a mesh: local dofs 0-2 carry component 0 and 3-5 component 1 (FreeFEM's order), global dof
-// 2 v + c; component 1's functions are scale times component 0's.
-class VectorP1 : public Basis {
- public:
-  explicit VectorP1(const Mesh& m, double scale = 1) : p1_(m), m_(m), scale_(scale) {}
-  int components() const override { return 2; }
-  int dof_count() const override { return 2 * static_cast<int>(m_.vertices.size()); }
-  int local_dofs() const override { return 6; }
-  void component_dofs(int c, int& f, int& l) const override {
-    f = 3 * c;
-    l = 3 * c + 3;
-  }
-  void dofs(int k, int* g) const override {
-    for (int c = 0; c < 2; ++c)
-      for (int i = 0; i < 3; ++i) g[3 * c + i] = 2 * m_.triangles[k][i] + c;
-  }
-  void evaluate(int k, Point xi, double* out) const override {
-    double scalar[9];
-    p1_.evaluate(k, xi, scalar);
-    for (int df = 0; df < 6; ++df)
-      for (int c = 0; c < 2; ++c)
-        for (int d = 0; d < 3; ++d)
-          out[(df * 2 + c) * 3 + d] = df / 3 == c ? (c == 1 ? scale_ : 1) * scalar[(df % 3) * 3 + d] : 0;
-  }
-
- private:
-  test::P1 p1_;
-  const Mesh& m_;
-  double scale_;
-};
-
 // A block's multiplier rows: global dofs 10, 11, 12.
 struct Rows {
   void dofs(int, int* g) const {
@@ -134,7 +103,7 @@ TEST(LocalBlock, KeepsItsEntriesWhileColumnsGrow) {
 
 TEST(ComponentPairs, RangesFunctionsAndTwins) {
   const Mesh mesh = test::grid_mesh(2, 2, 0, 0, 1, 1);
-  const VectorP1 fluid(mesh), multiplier(mesh), scaled(mesh, 2);
+  const test::VectorP1 fluid(mesh), multiplier(mesh), scaled(mesh, 2);
   const PolynomialBasis fluid_fit(fluid, mesh, 1, {0, 1}), multiplier_fit(multiplier, mesh, 1, {0, 1});
   const ComponentPairs pairs(fluid, fluid_fit, {0, 1}, multiplier, multiplier_fit, {0, 1});
   ASSERT_EQ(pairs.size(), 2u);
@@ -296,7 +265,7 @@ TEST(PieceIntegrators, PointsMatchTheBarycentricIntegral) {
 // component c) = c1 (|P| / det A) A_ac grad_s lambda_i . grad phi_j, plus the mass term where a = c.
 TEST(PieceIntegrators, PointsGiveTheListingsProduct) {
   const OnePiece setup;
-  const VectorP1 fluid(setup.fluid), multiplier(setup.solid);
+  const test::VectorP1 fluid(setup.fluid), multiplier(setup.solid);
   const PolynomialBasis fluid_fit(fluid, setup.fluid, 1, {0, 1}), solid_fit(multiplier, setup.solid, 1, {0, 1});
   const ComponentPairs pairs(fluid, fluid_fit, {0, 1}, multiplier, solid_fit, {0, 1});
   const double c1 = 0.7, c2 = 1.3;

@@ -1,0 +1,196 @@
+#include "characteristics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "errors.hpp"
+#include "lattice.hpp"
+#include "rules.hpp"
+#include "validation.hpp"
+
+namespace dlmfsi {
+
+namespace {
+
+// Barycentric coordinates within this of an edge count as on it: the rounding of a point moving along an edge
+// (a velocity parallel to it) must not make the walk cross back and forth. A foot moves by at most this
+// fraction of its triangle's size.
+constexpr double kOnEdge = 1e-10;
+// Crossings in a row that do not move the walk (through a vertex, from triangle to triangle around it)
+// before it stops there; and crossings in all before the walk is refused (a velocity far too large for dt).
+constexpr int kMaxIdle = 64;
+constexpr int kMaxCrossings = 100000;
+
+bool listed(const std::vector<int>& list, int c) { return std::find(list.begin(), list.end(), c) != list.end(); }
+
+}  // namespace
+
+Characteristics::Characteristics(const FluidSide& side, const CharacteristicsTerm& term) : side_(side), term_(term) {
+  const PolynomialBasis& basis = side.basis();
+  if (!basis.fitted())
+    throw Error("convect: the space is not a polynomial element on each triangle (its velocity and field cannot be "
+                "traced)");
+  if (!term.velocity || !term.field) throw Error("convect: the velocity or the field has no values");
+  if (!std::isfinite(term.dt)) throw Error("convect: dt=" + option_value(term.dt) + " is not finite");
+  if (!std::isfinite(term.c)) throw Error("convect: c=" + option_value(term.c) + " is not finite");
+  if (term.degree < 0 || term.degree > 60)
+    throw Error("convect: qforder=" + std::to_string(term.degree) + " out of range (0 to 60)");
+  if (term.components.empty()) throw Error("convect: no field component listed");
+  if (term.u_component == term.v_component)
+    throw Error("convect: the velocity's two components are the same (" + std::to_string(term.u_component) + ")");
+  for (int c : term.components)
+    if (std::count(term.components.begin(), term.components.end(), c) > 1)
+      throw Error("convect: field component " + std::to_string(c) + " listed twice");
+  for (int c : term.components)
+    if (!listed(side.components(), c)) throw Error("convect: field component " + std::to_string(c) + " not prepared");
+  for (int c : {term.u_component, term.v_component})
+    if (!listed(side.components(), c)) throw Error("convect: velocity component " + std::to_string(c) + " not prepared");
+
+  terms_ = monomial_count(basis.degree());
+  step_ = std::ldexp(term.dt, -side.scale());
+  velocity_ = local_polynomials(term.velocity, {term.u_component, term.v_component});
+  field_ = local_polynomials(term.field, term.components);
+  const int nc = side.space().components();
+  const std::vector<int>& functions = basis.functions();
+  for (size_t f = 0; f < functions.size(); ++f) {
+    const auto slot = std::find(term.components.begin(), term.components.end(), functions[f] % nc);
+    if (slot == term.components.end()) continue;
+    tested_.push_back(static_cast<int>(f));
+    tested_slot_.push_back(static_cast<int>(slot - term.components.begin()));
+  }
+}
+
+std::vector<double> Characteristics::local_polynomials(const double* values, const std::vector<int>& comps) const {
+  const PolynomialBasis& basis = side_.basis();
+  const int nc = side_.space().components();
+  const std::vector<int>& functions = basis.functions();
+  const size_t width = comps.size() * terms_;
+  std::vector<double> polys(side_.mesh().size() * width, 0.0);
+  for (int k = 0; k < side_.mesh().size(); ++k) {
+    const double* coef = basis.coefficients(k);
+    const int* dofs = side_.dofs(k);
+    double* out = &polys[k * width];
+    for (size_t f = 0; f < functions.size(); ++f) {
+      const auto slot = std::find(comps.begin(), comps.end(), functions[f] % nc);
+      if (slot == comps.end()) continue;
+      const double v = values[dofs[functions[f] / nc]];
+      double* o = out + (slot - comps.begin()) * terms_;
+      for (int m = 0; m < terms_; ++m) o[m] += v * coef[f * terms_ + m];
+    }
+  }
+  return polys;
+}
+
+namespace {
+
+double polynomial(const double* coef, const double* monomials, int terms) {
+  double s = 0;
+  for (int m = 0; m < terms; ++m) s += coef[m] * monomials[m];
+  return s;
+}
+
+}  // namespace
+
+Point Characteristics::velocity(int k, Point xi) const {
+  double m[monomial_count(kMaxLatticeDegree)];
+  monomial_values(side_.basis().degree(), xi, m);
+  const double* uv = &velocity_[static_cast<size_t>(k) * 2 * terms_];
+  return {polynomial(uv, m, terms_), polynomial(uv + terms_, m, terms_)};
+}
+
+Foot Characteristics::trace(int k, Point xi, CharacteristicsReport* report) const {
+  const Mesh& mesh = side_.mesh();
+  double left = 1;  // the part of dt still to follow
+  int idle = 0;
+  for (int crossings = 0;; ++crossings) {
+    if (crossings > kMaxCrossings)
+      throw Error("convect: the walk from fluid triangle " + std::to_string(side_.space().original()[k]) +
+                  " crossed more than " + std::to_string(kMaxCrossings) + " edges (a velocity far too large for dt?)");
+    Point p[3];
+    mesh.corners(k, p);
+    const Point w = velocity(k, xi);
+    if (!std::isfinite(w.x) || !std::isfinite(w.y))
+      throw Error("convect: the velocity is not finite in fluid triangle " +
+                  std::to_string(side_.space().original()[k]));
+    const Point here = from_reference(p, xi);
+    const Point there = to_reference(p, {here.x + left * step_ * w.x, here.y + left * step_ * w.y});
+    const double from[3] = {1 - xi.x - xi.y, xi.x, xi.y};
+    const double to[3] = {1 - there.x - there.y, there.x, there.y};
+    // The first edge the segment from -> to leaves by: edge i (opposite vertex i) at the fraction
+    // s = from_i / (from_i - to_i) of the segment, over the i with to_i < 0.
+    int edge = -1;
+    double s = 1;
+    for (int i = 0; i < 3; ++i)
+      if (to[i] < -kOnEdge) {
+        const double si = from[i] > 0 ? from[i] / (from[i] - to[i]) : 0;
+        if (edge < 0 || si < s) edge = i, s = si;
+      }
+    if (edge < 0) {  // the time is spent in this triangle
+      Point end{std::max(0.0, there.x), std::max(0.0, there.y)};
+      const double sum = end.x + end.y;
+      if (sum > 1) end = {end.x / sum, end.y / sum};
+      return {k, end, false};
+    }
+    double at[3];
+    for (int i = 0; i < 3; ++i) at[i] = std::max(0.0, from[i] + s * (to[i] - from[i]));
+    at[edge] = 0;
+    left *= 1 - s;
+    idle = s > 0 ? 0 : idle + 1;
+    const int next = mesh.neighbours[k][edge];
+    if (next < 0 || idle > kMaxIdle) {
+      if (report && next < 0) ++report->boundary_stops;
+      return {k, {at[1], at[2]}, next < 0};
+    }
+    if (report) ++report->crossings;
+    // The crossing in next's coordinates: the edge's two vertices keep their weights, the third gets 0.
+    const int a = mesh.triangles[k][(edge + 1) % 3], b = mesh.triangles[k][(edge + 2) % 3];
+    double in_next[3] = {0, 0, 0};
+    for (int i = 0; i < 3; ++i) {
+      const int v = mesh.triangles[next][i];
+      if (v == a) in_next[i] = at[(edge + 1) % 3];
+      if (v == b) in_next[i] = at[(edge + 2) % 3];
+    }
+    k = next;
+    xi = {in_next[1], in_next[2]};
+  }
+}
+
+void Characteristics::assemble(double* b, CharacteristicsReport* report) const {
+  const PolynomialBasis& basis = side_.basis();
+  const std::vector<RulePoint>& rule = triangle_rule(term_.degree);
+  const int n = static_cast<int>(rule.size());
+  const int nc = side_.space().components();
+  const int slots = static_cast<int>(term_.components.size());
+  const std::vector<int>& functions = basis.functions();
+  std::fill(b, b + side_.space().dof_count(), 0.0);
+  std::vector<Point> points(n);
+  for (int q = 0; q < n; ++q) points[q] = rule[q].xi;
+  std::vector<double> phi(functions.size() * n), g(static_cast<size_t>(n) * slots);
+  double m[monomial_count(kMaxLatticeDegree)];
+  // The side's coordinates are the caller's times 2^-scale: areas come back with 2^(2 scale).
+  const double factor = std::ldexp(term_.c, 2 * side_.scale());
+  const Mesh& mesh = side_.mesh();
+  for (int k = 0; k < mesh.size(); ++k) {
+    Point p[3];
+    mesh.corners(k, p);
+    const double area = 0.5 * cross(p[1] - p[0], p[2] - p[0]);
+    basis.evaluate_points(k, points.data(), n, phi.data(), nullptr, nullptr);
+    for (int q = 0; q < n; ++q) {
+      const Foot foot = trace(k, points[q], report);
+      monomial_values(basis.degree(), foot.xi, m);
+      const double* f = &field_[static_cast<size_t>(foot.k) * slots * terms_];
+      for (int s = 0; s < slots; ++s) g[q * slots + s] = rule[q].weight * polynomial(f + s * terms_, m, terms_);
+    }
+    if (report) report->points += n;
+    const int* dofs = side_.dofs(k);
+    for (size_t t = 0; t < tested_.size(); ++t) {
+      const int f = tested_[t], s = tested_slot_[t];
+      double sum = 0;
+      for (int q = 0; q < n; ++q) sum += g[q * slots + s] * phi[f * n + q];
+      b[dofs[functions[f] / nc]] += factor * area * sum;
+    }
+  }
+}
+
+}  // namespace dlmfsi
