@@ -67,15 +67,19 @@ std::vector<double> Characteristics::local_polynomials(const double* values, con
   const std::vector<int>& functions = basis.functions();
   const size_t width = comps.size() * terms_;
   std::vector<double> polys(side_.mesh().size() * width, 0.0);
+  std::vector<int> slot(functions.size(), -1);  // per fitted function: its component's place in comps
+  for (size_t f = 0; f < functions.size(); ++f) {
+    const auto c = std::find(comps.begin(), comps.end(), functions[f] % nc);
+    if (c != comps.end()) slot[f] = static_cast<int>(c - comps.begin());
+  }
   for (int k = 0; k < side_.mesh().size(); ++k) {
     const double* coef = basis.coefficients(k);
     const int* dofs = side_.dofs(k);
     double* out = &polys[k * width];
     for (size_t f = 0; f < functions.size(); ++f) {
-      const auto slot = std::find(comps.begin(), comps.end(), functions[f] % nc);
-      if (slot == comps.end()) continue;
+      if (slot[f] < 0) continue;
       const double v = values[dofs[functions[f] / nc]];
-      double* o = out + (slot - comps.begin()) * terms_;
+      double* o = out + slot[f] * terms_;
       for (int m = 0; m < terms_; ++m) o[m] += v * coef[f * terms_ + m];
     }
   }
@@ -84,37 +88,50 @@ std::vector<double> Characteristics::local_polynomials(const double* values, con
 
 namespace {
 
+// The monomials of degree <= d at xi and a polynomial's value from them; NM > 0 fixes their number (and the
+// degree) at compile time.
+template <int NM>
+void monomials_at(int degree, Point xi, double* m) {
+  constexpr int kDegree = NM == 1 ? 0 : NM == 3 ? 1 : NM == 6 ? 2 : 3;
+  monomial_values(NM > 0 ? kDegree : degree, xi, m);
+}
+
+template <int NM>
 double polynomial(const double* coef, const double* monomials, int terms) {
   double s = 0;
-  for (int m = 0; m < terms; ++m) s += coef[m] * monomials[m];
+  const int n = NM > 0 ? NM : terms;
+  for (int m = 0; m < n; ++m) s += coef[m] * monomials[m];
   return s;
 }
 
 }  // namespace
 
+template <int NM>
 Point Characteristics::velocity(int k, Point xi) const {
   double m[monomial_count(kMaxLatticeDegree)];
-  monomial_values(side_.basis().degree(), xi, m);
+  monomials_at<NM>(side_.basis().degree(), xi, m);
   const double* uv = &velocity_[static_cast<size_t>(k) * 2 * terms_];
-  return {polynomial(uv, m, terms_), polynomial(uv + terms_, m, terms_)};
+  return {polynomial<NM>(uv, m, terms_), polynomial<NM>(uv + terms_, m, terms_)};
 }
 
-Foot Characteristics::trace(int k, Point xi, CharacteristicsReport* report) const {
+// The walk in reference coordinates: on triangle k the velocity w at xi, and the point it leads to,
+// xi + (d xi / d x) (left dt w) with the part `left` of dt still to follow.
+template <int NM>
+Foot Characteristics::walk(int k, Point xi, CharacteristicsReport* report) const {
   const Mesh& mesh = side_.mesh();
-  double left = 1;  // the part of dt still to follow
+  double left = 1;
   int idle = 0;
   for (int crossings = 0;; ++crossings) {
     if (crossings > kMaxCrossings)
       throw Error("convect: the walk from fluid triangle " + std::to_string(side_.space().original()[k]) +
                   " crossed more than " + std::to_string(kMaxCrossings) + " edges (a velocity far too large for dt?)");
-    Point p[3];
-    mesh.corners(k, p);
-    const Point w = velocity(k, xi);
+    const Point w = velocity<NM>(k, xi);
     if (!std::isfinite(w.x) || !std::isfinite(w.y))
       throw Error("convect: the velocity is not finite in fluid triangle " +
                   std::to_string(side_.space().original()[k]));
-    const Point here = from_reference(p, xi);
-    const Point there = to_reference(p, {here.x + left * step_ * w.x, here.y + left * step_ * w.y});
+    const double* j = side_.basis().inverse_jacobian(k);
+    const Point d{left * step_ * w.x, left * step_ * w.y};
+    const Point there{xi.x + j[0] * d.x + j[1] * d.y, xi.y + j[2] * d.x + j[3] * d.y};
     const double from[3] = {1 - xi.x - xi.y, xi.x, xi.y};
     const double to[3] = {1 - there.x - there.y, there.x, there.y};
     // The first edge the segment from -> to leaves by: edge i (opposite vertex i) at the fraction
@@ -156,7 +173,8 @@ Foot Characteristics::trace(int k, Point xi, CharacteristicsReport* report) cons
   }
 }
 
-void Characteristics::assemble(double* b, CharacteristicsReport* report) const {
+template <int NM>
+void Characteristics::integrate(double* b, CharacteristicsReport* report) const {
   const PolynomialBasis& basis = side_.basis();
   const std::vector<RulePoint>& rule = triangle_rule(term_.degree);
   const int n = static_cast<int>(rule.size());
@@ -166,7 +184,12 @@ void Characteristics::assemble(double* b, CharacteristicsReport* report) const {
   std::fill(b, b + side_.space().dof_count(), 0.0);
   std::vector<Point> points(n);
   for (int q = 0; q < n; ++q) points[q] = rule[q].xi;
-  std::vector<double> phi(functions.size() * n), g(static_cast<size_t>(n) * slots);
+  // The test functions at the rule's points: the same on every triangle that shares the basis's fit.
+  std::vector<double> phi(functions.size() * n), shared_phi(functions.size() * n), g(static_cast<size_t>(n) * slots);
+  int shared_k = -1;
+  for (int k = 0; k < side_.mesh().size() && shared_k < 0; ++k)
+    if (basis.shared(k)) shared_k = k;
+  if (shared_k >= 0) basis.evaluate_points(shared_k, points.data(), n, shared_phi.data(), nullptr, nullptr);
   double m[monomial_count(kMaxLatticeDegree)];
   // The side's coordinates are the caller's times 2^-scale: areas come back with 2^(2 scale).
   const double factor = std::ldexp(term_.c, 2 * side_.scale());
@@ -175,21 +198,43 @@ void Characteristics::assemble(double* b, CharacteristicsReport* report) const {
     Point p[3];
     mesh.corners(k, p);
     const double area = 0.5 * cross(p[1] - p[0], p[2] - p[0]);
-    basis.evaluate_points(k, points.data(), n, phi.data(), nullptr, nullptr);
+    const bool shared = basis.shared(k);
+    if (!shared) basis.evaluate_points(k, points.data(), n, phi.data(), nullptr, nullptr);
+    const double* tests = shared ? shared_phi.data() : phi.data();
     for (int q = 0; q < n; ++q) {
-      const Foot foot = trace(k, points[q], report);
-      monomial_values(basis.degree(), foot.xi, m);
+      const Foot foot = walk<NM>(k, points[q], report);
+      monomials_at<NM>(basis.degree(), foot.xi, m);
       const double* f = &field_[static_cast<size_t>(foot.k) * slots * terms_];
-      for (int s = 0; s < slots; ++s) g[q * slots + s] = rule[q].weight * polynomial(f + s * terms_, m, terms_);
+      for (int s = 0; s < slots; ++s) g[q * slots + s] = rule[q].weight * polynomial<NM>(f + s * terms_, m, terms_);
     }
     if (report) report->points += n;
     const int* dofs = side_.dofs(k);
     for (size_t t = 0; t < tested_.size(); ++t) {
       const int f = tested_[t], s = tested_slot_[t];
       double sum = 0;
-      for (int q = 0; q < n; ++q) sum += g[q * slots + s] * phi[f * n + q];
+      for (int q = 0; q < n; ++q) sum += g[q * slots + s] * tests[f * n + q];
       b[dofs[functions[f] / nc]] += factor * area * sum;
     }
+  }
+}
+
+Foot Characteristics::trace(int k, Point xi, CharacteristicsReport* report) const {
+  switch (terms_) {
+    case 1: return walk<1>(k, xi, report);
+    case 3: return walk<3>(k, xi, report);
+    case 6: return walk<6>(k, xi, report);
+    case 10: return walk<10>(k, xi, report);
+    default: return walk<0>(k, xi, report);
+  }
+}
+
+void Characteristics::assemble(double* b, CharacteristicsReport* report) const {
+  switch (terms_) {
+    case 1: integrate<1>(b, report); break;
+    case 3: integrate<3>(b, report); break;
+    case 6: integrate<6>(b, report); break;
+    case 10: integrate<10>(b, report); break;
+    default: integrate<0>(b, report); break;
   }
 }
 

@@ -59,7 +59,13 @@ class Characteristics {
   // Per triangle, the listed components of a finite element function (dof values) as polynomials in the
   // reference coordinates: terms_ coefficients per component, the components of triangle k together.
   std::vector<double> local_polynomials(const double* values, const std::vector<int>& comps) const;
+  // NM: the number of monomials when fixed at compile time (1, 3, 6, 10: degrees 0 to 3), else 0.
+  template <int NM>
   Point velocity(int k, Point xi) const;
+  template <int NM>
+  Foot walk(int k, Point xi, CharacteristicsReport* report) const;
+  template <int NM>
+  void integrate(double* b, CharacteristicsReport* report) const;
 
   const FluidSide& side_;
   CharacteristicsTerm term_;
