@@ -268,7 +268,8 @@ class NotTwoD : public E_F0mps {
   }
 };
 
-// dlmfsilasterror(): the message of the last failed dlmfsi or dlmfsisupermesh call ("" after a success).
+// dlmfsilasterror(): the message of the last failed dlmfsi, dlmfsisupermesh or dlmfsiconvect call ("" after a
+// success).
 class LastErrorOp : public E_F0mps {
  public:
   typedef string* Result;
@@ -287,6 +288,7 @@ class LastErrorOp : public E_F0mps {
 void dlmfsi_register_supermesh();  // plugin/freefem/supermesh.cpp
 void dlmfsi_register_3d();         // plugin/freefem/dlmfsi3d.cpp
 void dlmfsi_register_convect();    // plugin/freefem/convect.cpp
+void dlmfsi_register_matrix_sort();  // plugin/freefem/matrix_sort.cpp
 
 static void Load_Init() {
   Global.Add("dlmfsi", "(", new OneOperatorCode<DlmfsiOp>);
@@ -298,6 +300,7 @@ static void Load_Init() {
   Global.Add("dlmfsilasterror", "(", new OneOperatorCode<LastErrorOp>);
   dlmfsi_register_supermesh();
   dlmfsi_register_convect();
+  dlmfsi_register_matrix_sort();
 }
 
 LOADFUNC(Load_Init)

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -8,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "errors.hpp"
+#include "row_order.hpp"
 #include "sparse.hpp"
 
 using namespace dlmfsi;
@@ -305,4 +308,36 @@ TEST(Sparse, SumOnLastPatternWithThreadsIsCompressBitForBit) {
     same_bits(builder.build_on_last_pattern(misses.data(), later.data(), 2), compress(rows, cols, threads));
     EXPECT_EQ(builder.kept_pattern(), spread == 0);
   }
+}
+
+TEST(RowOrder, SortByRowsIsTheLexicographicOrderOfTheEntries) {
+  // Random distinct (row, column) entries in random order, 0- and 1-based, against std::sort of the keys.
+  std::mt19937 rng(7);
+  for (int base : {0, 1}) {
+    const int rows = 50, cols = 40;
+    std::vector<std::array<int, 2>> keys;
+    for (int r = 0; r < rows; ++r)
+      for (int c = 0; c < cols; ++c)
+        if (rng() % 3 == 0) keys.push_back({r + base, c + base});
+    std::shuffle(keys.begin(), keys.end(), rng);
+    std::vector<int> row, col;
+    std::vector<double> value;
+    for (const auto& k : keys) {
+      row.push_back(k[0]);
+      col.push_back(k[1]);
+      value.push_back(1000.0 * k[0] + k[1]);  // each value names its entry
+    }
+    sort_by_rows(rows, row.size(), row.data(), col.data(), value.data(), base);
+    std::vector<std::array<int, 2>> sorted = keys;
+    std::sort(sorted.begin(), sorted.end());
+    ASSERT_EQ(row.size(), sorted.size());
+    for (size_t k = 0; k < sorted.size(); ++k) {
+      EXPECT_EQ(row[k], sorted[k][0]);
+      EXPECT_EQ(col[k], sorted[k][1]);
+      EXPECT_EQ(value[k], 1000.0 * sorted[k][0] + sorted[k][1]);
+    }
+  }
+  int r[1] = {3}, c[1] = {0};
+  double v[1] = {1};
+  EXPECT_THROW(sort_by_rows(3, 1, r, c, v), Error);  // row 3 of rows 0 .. 2
 }
