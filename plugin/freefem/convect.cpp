@@ -135,6 +135,32 @@ AnyType ConvectOp::operator()(Stack stack) const {
   });
 }
 
+// dlmfsiconvect on a space that is not 2D (mesh3, surface or curve meshes): a catchable error at run time rather
+// than a compile error.
+template <class Space>
+class NotTwoD : public E_F0mps {
+ public:
+  typedef long Result;
+  explicit NotTwoD(const basicAC_F0& args) {
+    basicAC_F0::name_and_type np[4] = {{"velocity", &typeid(E_Array)}, {"field", &typeid(E_Array)},
+                                       {"c", &typeid(double)}, {"qforder", &typeid(long)}};
+    Expression ignored[4];
+    args.SetNameParam(4, np, ignored);
+  }
+  static ArrayOfaType typeargs() {
+    return ArrayOfaType(atype<Space>(), atype<KN<double>*>(), atype<double>(), atype<KN<double>*>(),
+                        atype<KN<double>*>());
+  }
+  static E_F0* f(const basicAC_F0& args) { return new NotTwoD(args); }
+  AnyType operator()(Stack) const {
+    dlmfsi_ff::last_error().clear();
+    dlmfsi_ff::fail("dlmfsi: convect: the space must be 2D (a mesh's): dlmfsiconvect has no 3D walk");
+  }
+};
+
 }  // namespace
 
-void dlmfsi_register_convect() { Global.Add("dlmfsiconvect", "(", new OneOperatorCode<ConvectOp>); }
+void dlmfsi_register_convect() {
+  Global.Add("dlmfsiconvect", "(", new OneOperatorCode<ConvectOp>);
+  Global.Add("dlmfsiconvect", "(", new OneOperatorCode<NotTwoD<pfes3*> >);
+}
