@@ -119,11 +119,12 @@ Point Characteristics::velocity(int k, Point xi) const {
 template <int NM>
 Foot Characteristics::walk(int k, Point xi, CharacteristicsReport* report) const {
   const Mesh& mesh = side_.mesh();
+  const int start = k;
   double left = 1;
   int idle = 0;
   for (int crossings = 0;; ++crossings) {
     if (crossings > kMaxCrossings)
-      throw Error("convect: the walk from fluid triangle " + std::to_string(side_.space().original()[k]) +
+      throw Error("convect: the walk from fluid triangle " + std::to_string(side_.space().original()[start]) +
                   " crossed more than " + std::to_string(kMaxCrossings) + " edges (a velocity far too large for dt?)");
     const Point w = velocity<NM>(k, xi);
     if (!std::isfinite(w.x) || !std::isfinite(w.y))

@@ -240,4 +240,13 @@ TEST(Characteristics, BadInputIsNamed) {
   term = uniform_term(ok, -0.1);
   term.v_component = 0;
   EXPECT_THROW(Characteristics(s.side, term), Error);
+  // Towards a point inside a triangle for a very long time: each straight stretch overshoots it, and the walk
+  // zigzags across it.
+  const std::vector<double> sink = s.interpolate([](Point x) { return 0.53 - x.x; }, [](Point x) { return 0.47 - x.y; });
+  try {
+    Characteristics(s.side, uniform_term(sink, 1e12)).assemble(b.data());
+    FAIL() << "an endless walk was not stopped";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("crossed more than 100000 edges"), std::string::npos) << e.what();
+  }
 }
