@@ -26,11 +26,33 @@ bool listed(const std::vector<int>& list, int c) { return std::find(list.begin()
 
 }  // namespace
 
-Characteristics::Characteristics(const FluidSide& side, const CharacteristicsTerm& term) : side_(side), term_(term) {
+namespace {
+
+// Do the two sides hold the same triangles in the same order (the same mesh, renumbered alike)?
+bool same_triangles(const FluidSide& a, const FluidSide& b) {
+  if (&a == &b) return true;
+  const Mesh &ma = a.mesh(), &mb = b.mesh();
+  if (ma.size() != mb.size() || a.scale() != b.scale()) return false;
+  for (int k = 0; k < ma.size(); ++k)
+    for (int i = 0; i < 3; ++i)
+      if (ma.vertex(k, i) != mb.vertex(k, i)) return false;
+  return true;
+}
+
+}  // namespace
+
+Characteristics::Characteristics(const FluidSide& side, const CharacteristicsTerm& term,
+                                 const FluidSide* velocity_side)
+    : side_(side), velocity_side_(velocity_side ? *velocity_side : side), term_(term) {
   const PolynomialBasis& basis = side.basis();
   if (!basis.fitted())
-    throw Error("convect: the space is not a polynomial element on each triangle (its velocity and field cannot be "
-                "traced)");
+    throw Error("convect: the space is not a polynomial element on each triangle (its field cannot be evaluated at "
+                "the feet)");
+  if (!velocity_side_.basis().fitted())
+    throw Error("convect: the velocity's space is not a polynomial element on each triangle (its velocity cannot "
+                "be traced)");
+  if (!same_triangles(side, velocity_side_))
+    throw Error("convect: the velocity's space and the field's are not on the same mesh");
   if (!term.velocity || !term.field) throw Error("convect: the velocity or the field has no values");
   if (!std::isfinite(term.dt)) throw Error("convect: dt=" + option_value(term.dt) + " is not finite");
   if (!std::isfinite(term.c)) throw Error("convect: c=" + option_value(term.c) + " is not finite");
@@ -45,12 +67,14 @@ Characteristics::Characteristics(const FluidSide& side, const CharacteristicsTer
   for (int c : term.components)
     if (!listed(side.components(), c)) throw Error("convect: field component " + std::to_string(c) + " not prepared");
   for (int c : {term.u_component, term.v_component})
-    if (!listed(side.components(), c)) throw Error("convect: velocity component " + std::to_string(c) + " not prepared");
+    if (!listed(velocity_side_.components(), c))
+      throw Error("convect: velocity component " + std::to_string(c) + " not prepared");
 
   terms_ = monomial_count(basis.degree());
+  velocity_terms_ = monomial_count(velocity_side_.basis().degree());
   step_ = std::ldexp(term.dt, -side.scale());
-  velocity_ = local_polynomials(term.velocity, {term.u_component, term.v_component});
-  field_ = local_polynomials(term.field, term.components);
+  velocity_ = local_polynomials(velocity_side_, term.velocity, {term.u_component, term.v_component});
+  field_ = local_polynomials(side, term.field, term.components);
   const int nc = side.space().components();
   const std::vector<int>& functions = basis.functions();
   for (size_t f = 0; f < functions.size(); ++f) {
@@ -61,26 +85,28 @@ Characteristics::Characteristics(const FluidSide& side, const CharacteristicsTer
   }
 }
 
-std::vector<double> Characteristics::local_polynomials(const double* values, const std::vector<int>& comps) const {
-  const PolynomialBasis& basis = side_.basis();
-  const int nc = side_.space().components();
+std::vector<double> Characteristics::local_polynomials(const FluidSide& side, const double* values,
+                                                       const std::vector<int>& comps) {
+  const PolynomialBasis& basis = side.basis();
+  const int nc = side.space().components();
+  const int terms = monomial_count(basis.degree());
   const std::vector<int>& functions = basis.functions();
-  const size_t width = comps.size() * terms_;
-  std::vector<double> polys(side_.mesh().size() * width, 0.0);
+  const size_t width = comps.size() * terms;
+  std::vector<double> polys(side.mesh().size() * width, 0.0);
   std::vector<int> slot(functions.size(), -1);  // per fitted function: its component's place in comps
   for (size_t f = 0; f < functions.size(); ++f) {
     const auto c = std::find(comps.begin(), comps.end(), functions[f] % nc);
     if (c != comps.end()) slot[f] = static_cast<int>(c - comps.begin());
   }
-  for (int k = 0; k < side_.mesh().size(); ++k) {
+  for (int k = 0; k < side.mesh().size(); ++k) {
     const double* coef = basis.coefficients(k);
-    const int* dofs = side_.dofs(k);
+    const int* dofs = side.dofs(k);
     double* out = &polys[k * width];
     for (size_t f = 0; f < functions.size(); ++f) {
       if (slot[f] < 0) continue;
       const double v = values[dofs[functions[f] / nc]];
-      double* o = out + slot[f] * terms_;
-      for (int m = 0; m < terms_; ++m) o[m] += v * coef[f * terms_ + m];
+      double* o = out + slot[f] * terms;
+      for (int m = 0; m < terms; ++m) o[m] += v * coef[f * terms + m];
     }
   }
   return polys;
@@ -106,17 +132,17 @@ double polynomial(const double* coef, const double* monomials, int terms) {
 
 }  // namespace
 
-template <int NM>
+template <int NV>
 Point Characteristics::velocity(int k, Point xi) const {
   double m[monomial_count(kMaxLatticeDegree)];
-  monomials_at<NM>(side_.basis().degree(), xi, m);
-  const double* uv = &velocity_[static_cast<size_t>(k) * 2 * terms_];
-  return {polynomial<NM>(uv, m, terms_), polynomial<NM>(uv + terms_, m, terms_)};
+  monomials_at<NV>(velocity_side_.basis().degree(), xi, m);
+  const double* uv = &velocity_[static_cast<size_t>(k) * 2 * velocity_terms_];
+  return {polynomial<NV>(uv, m, velocity_terms_), polynomial<NV>(uv + velocity_terms_, m, velocity_terms_)};
 }
 
 // The walk in reference coordinates: on triangle k the velocity w at xi, and the point it leads to,
 // xi + (d xi / d x) (left dt w) with the part `left` of dt still to follow.
-template <int NM>
+template <int NV>
 Foot Characteristics::walk(int k, Point xi, CharacteristicsReport* report) const {
   const Mesh& mesh = side_.mesh();
   const int start = k;
@@ -126,7 +152,7 @@ Foot Characteristics::walk(int k, Point xi, CharacteristicsReport* report) const
     if (crossings > kMaxCrossings)
       throw Error("convect: the walk from fluid triangle " + std::to_string(side_.space().original()[start]) +
                   " crossed more than " + std::to_string(kMaxCrossings) + " edges (a velocity far too large for dt?)");
-    const Point w = velocity<NM>(k, xi);
+    const Point w = velocity<NV>(k, xi);
     if (!std::isfinite(w.x) || !std::isfinite(w.y))
       throw Error("convect: the velocity is not finite in fluid triangle " +
                   std::to_string(side_.space().original()[k]));
@@ -174,7 +200,7 @@ Foot Characteristics::walk(int k, Point xi, CharacteristicsReport* report) const
   }
 }
 
-template <int NM>
+template <int NV, int NF>
 void Characteristics::integrate(double* b, CharacteristicsReport* report) const {
   const PolynomialBasis& basis = side_.basis();
   const std::vector<RulePoint>& rule = triangle_rule(term_.degree);
@@ -203,10 +229,10 @@ void Characteristics::integrate(double* b, CharacteristicsReport* report) const 
     if (!shared) basis.evaluate_points(k, points.data(), n, phi.data(), nullptr, nullptr);
     const double* tests = shared ? shared_phi.data() : phi.data();
     for (int q = 0; q < n; ++q) {
-      const Foot foot = walk<NM>(k, points[q], report);
-      monomials_at<NM>(basis.degree(), foot.xi, m);
+      const Foot foot = walk<NV>(k, points[q], report);
+      monomials_at<NF>(basis.degree(), foot.xi, m);
       const double* f = &field_[static_cast<size_t>(foot.k) * slots * terms_];
-      for (int s = 0; s < slots; ++s) g[q * slots + s] = rule[q].weight * polynomial<NM>(f + s * terms_, m, terms_);
+      for (int s = 0; s < slots; ++s) g[q * slots + s] = rule[q].weight * polynomial<NF>(f + s * terms_, m, terms_);
     }
     if (report) report->points += n;
     const int* dofs = side_.dofs(k);
@@ -220,7 +246,7 @@ void Characteristics::integrate(double* b, CharacteristicsReport* report) const 
 }
 
 Foot Characteristics::trace(int k, Point xi, CharacteristicsReport* report) const {
-  switch (terms_) {
+  switch (velocity_terms_) {
     case 1: return walk<1>(k, xi, report);
     case 3: return walk<3>(k, xi, report);
     case 6: return walk<6>(k, xi, report);
@@ -229,13 +255,22 @@ Foot Characteristics::trace(int k, Point xi, CharacteristicsReport* report) cons
   }
 }
 
+// The field's number of monomials fixed at compile time when it is the velocity's (one space), else not.
+template <int NV>
+void Characteristics::integrate_field(double* b, CharacteristicsReport* report) const {
+  if (terms_ == velocity_terms_)
+    integrate<NV, NV>(b, report);
+  else
+    integrate<NV, 0>(b, report);
+}
+
 void Characteristics::assemble(double* b, CharacteristicsReport* report) const {
-  switch (terms_) {
-    case 1: integrate<1>(b, report); break;
-    case 3: integrate<3>(b, report); break;
-    case 6: integrate<6>(b, report); break;
-    case 10: integrate<10>(b, report); break;
-    default: integrate<0>(b, report); break;
+  switch (velocity_terms_) {
+    case 1: integrate_field<1>(b, report); break;
+    case 3: integrate_field<3>(b, report); break;
+    case 6: integrate_field<6>(b, report); break;
+    case 10: integrate_field<10>(b, report); break;
+    default: integrate<0, 0>(b, report); break;
   }
 }
 

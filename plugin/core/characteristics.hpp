@@ -9,9 +9,10 @@
 // the walk where it meets it. The integral uses one rule on every triangle (degree 5 by default: the
 // 7-point rule of FreeFEM's qf5pT, int2d's default).
 //
-// The fields, the velocity and the test functions are components of one space (the fluid side's); the
-// velocity and the field are polynomials on each triangle, formed once per call, so that a point costs a
-// few dozen operations rather than a basis evaluation.
+// The field and the test functions are components of one space (the fluid side's), the velocity of the same
+// space or of another one on the same mesh (a scalar field carried by a vector velocity); the velocity and the
+// field are polynomials on each triangle, formed once per call, so that a point costs a few dozen operations
+// rather than a basis evaluation.
 #pragma once
 #include <vector>
 
@@ -21,7 +22,7 @@
 namespace dlmfsi {
 
 struct CharacteristicsTerm {
-  const double* velocity = nullptr;  // the space's dof values; the velocity is components u_component, v_component
+  const double* velocity = nullptr;  // the velocity space's dof values: components u_component, v_component
   int u_component = 0, v_component = 1;
   const double* field = nullptr;     // the space's dof values
   std::vector<int> components{0, 1};  // of field, each tested with the same component of the space
@@ -45,9 +46,10 @@ struct Foot {
 
 class Characteristics {
  public:
-  // The side's basis must be fitted (a polynomial element) on u_component, v_component and the field's
-  // components (the side's component list holds them all). Throws Error naming what is wrong.
-  Characteristics(const FluidSide& side, const CharacteristicsTerm& term);
+  // The side's basis must be fitted (a polynomial element) on the field's components, and the velocity side's
+  // (side itself when velocity_side is null) on u_component and v_component; the two sides on one mesh (the
+  // same triangles: the same Morton order). Throws Error naming what is wrong.
+  Characteristics(const FluidSide& side, const CharacteristicsTerm& term, const FluidSide* velocity_side = nullptr);
 
   // The walk from reference point xi of triangle k (side numbering) for the term's time.
   Foot trace(int k, Point xi, CharacteristicsReport* report = nullptr) const;
@@ -58,18 +60,24 @@ class Characteristics {
  private:
   // Per triangle, the listed components of a finite element function (dof values) as polynomials in the
   // reference coordinates: terms_ coefficients per component, the components of triangle k together.
-  std::vector<double> local_polynomials(const double* values, const std::vector<int>& comps) const;
-  // NM: the number of monomials when fixed at compile time (1, 3, 6, 10: degrees 0 to 3), else 0.
-  template <int NM>
+  static std::vector<double> local_polynomials(const FluidSide& side, const double* values,
+                                               const std::vector<int>& comps);
+  // NV, NF: the number of monomials of the velocity and of the field when fixed at compile time (1, 3, 6, 10:
+  // degrees 0 to 3), else 0.
+  template <int NV>
   Point velocity(int k, Point xi) const;
-  template <int NM>
+  template <int NV>
   Foot walk(int k, Point xi, CharacteristicsReport* report) const;
-  template <int NM>
+  template <int NV, int NF>
   void integrate(double* b, CharacteristicsReport* report) const;
+  template <int NV>
+  void integrate_field(double* b, CharacteristicsReport* report) const;
 
   const FluidSide& side_;
+  const FluidSide& velocity_side_;
   CharacteristicsTerm term_;
-  int terms_ = 0;
+  int terms_ = 0;                   // monomials per field component
+  int velocity_terms_ = 0;          // monomials per velocity component
   double step_ = 0;                 // dt in the side's (scaled) coordinates
   std::vector<double> velocity_;    // u and v on each triangle
   std::vector<double> field_;       // the field's components on each triangle

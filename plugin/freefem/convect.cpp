@@ -25,16 +25,20 @@
 #include "errors.hpp"
 
 void dlmfsi_register_convect();
-const dlmfsi::FluidSide& dlmfsi_convect_side(const FESpace& vh, const std::vector<int>& components);  // dlmfsi.cpp
+// dlmfsi.cpp: the kept sides, slot 0 the field's, slot 1 a velocity space's of its own
+const dlmfsi::FluidSide& dlmfsi_convect_side(const FESpace& vh, const std::vector<int>& components, int slot);
 
 namespace {
 
+// TwoSpaces: dlmfsiconvect(Uh, u[], dt, Vh, f[], b, ...), the velocity in its own space; else
+// dlmfsiconvect(Zh, u[], dt, f[], b, ...), one space.
+template <bool TwoSpaces>
 class ConvectOp : public E_F0mps {
  public:
   typedef long Result;
   static const int n_name_param = 4;
   enum { kVelocity, kField, kC, kQforder };
-  Expression space, velocity, dt, field, out;
+  Expression velocity_space, velocity, dt, field_space, field, out;
   Expression nargs[n_name_param] = {};
   std::vector<Expression> lists[2];  // velocity=[..] and field=[..] given as literal arrays
 
@@ -52,13 +56,21 @@ class ConvectOp : public E_F0mps {
         for (int e = 0; e < a->size(); ++e) lists[i].push_back(to<long>((*a)[e]));
         nargs[i] = 0;
       }
-    space = to<pfes*>(args[0]);
+    velocity_space = to<pfes*>(args[0]);
     velocity = to<KN<double>*>(args[1]);
     dt = to<double>(args[2]);
-    field = to<KN<double>*>(args[3]);
-    out = to<KN<double>*>(args[4]);
+    const int f = TwoSpaces ? 4 : 3;
+    if (TwoSpaces)
+      field_space = to<pfes*>(args[3]);
+    else
+      field_space = velocity_space;
+    field = to<KN<double>*>(args[f]);
+    out = to<KN<double>*>(args[f + 1]);
   }
   static ArrayOfaType typeargs() {
+    if (TwoSpaces)
+      return ArrayOfaType(atype<pfes*>(), atype<KN<double>*>(), atype<double>(), atype<pfes*>(), atype<KN<double>*>(),
+                          atype<KN<double>*>());
     return ArrayOfaType(atype<pfes*>(), atype<KN<double>*>(), atype<double>(), atype<KN<double>*>(),
                         atype<KN<double>*>());
   }
@@ -77,25 +89,41 @@ class ConvectOp : public E_F0mps {
     const char* name = i == kVelocity ? "velocity" : "field";
     std::vector<int> c;
     for (long g : given) {
-      if (g < 0 || g > INT_MAX) throw dlmfsi::Error(std::string("convect: ") + name + " component " + std::to_string(g) + " out of range");
+      if (g < 0 || g > INT_MAX)
+        throw dlmfsi::Error(std::string("convect: ") + name + " component " + std::to_string(g) + " out of range");
       c.push_back(static_cast<int>(g));
     }
     return c;
   }
 };
 
-AnyType ConvectOp::operator()(Stack stack) const {
+// A vector of the space: as many values as dofs.
+void check_values(const KN<double>* a, const FESpace& vh, const char* what) {
+  if (!a || a->N() != vh.NbOfDF)
+    throw dlmfsi::Error(std::string("convect: the ") + what + " has " + std::to_string(a ? a->N() : 0) +
+                        " values, its space " + std::to_string(vh.NbOfDF) + " dofs (pass the space's vector, e.g. uo[])");
+}
+
+void check_components(const std::vector<int>& list, const FESpace& vh, const char* what) {
+  for (int c : list)
+    if (c >= vh.N)
+      throw dlmfsi::Error(std::string("convect: ") + what + " component " + std::to_string(c) +
+                          " out of range (the space has " + std::to_string(vh.N) + ")");
+}
+
+template <bool TwoSpaces>
+AnyType ConvectOp<TwoSpaces>::operator()(Stack stack) const {
   return dlmfsi_ff::guarded([&]() -> AnyType {
-    FESpace* vh = **GetAny<pfes*>((*space)(stack));
-    if (!vh) throw dlmfsi::Error("convect: the space is not defined");
+    FESpace* uh = **GetAny<pfes*>((*velocity_space)(stack));
+    FESpace* vh = **GetAny<pfes*>((*field_space)(stack));
+    if (!uh || !vh) throw dlmfsi::Error("convect: a space is not defined");
+    if (TwoSpaces && &uh->Th != &vh->Th)
+      throw dlmfsi::Error("convect: the velocity's space and the field's are not on the same mesh");
     KN<double>* u = GetAny<KN<double>*>((*velocity)(stack));
     KN<double>* f = GetAny<KN<double>*>((*field)(stack));
     KN<double>* b = GetAny<KN<double>*>((*out)(stack));
-    const int n = vh->NbOfDF;
-    for (const auto& [a, what] : {std::pair<KN<double>*, const char*>{u, "velocity"}, {f, "field"}})
-      if (!a || a->N() != n)
-        throw dlmfsi::Error(std::string("convect: the ") + what + " has " + std::to_string(a ? a->N() : 0) +
-                            " values, the space " + std::to_string(n) + " dofs (pass the space's vector, e.g. uo[])");
+    check_values(u, *uh, "velocity");
+    check_values(f, *vh, "field");
     if (!b) throw dlmfsi::Error("convect: the result array is not defined");
     dlmfsi::CharacteristicsTerm term;
     const std::vector<int> uv = components(kVelocity, stack, {0, 1});
@@ -103,27 +131,31 @@ AnyType ConvectOp::operator()(Stack stack) const {
       throw dlmfsi::Error("convect: velocity= lists " + std::to_string(uv.size()) + " components, expected 2");
     term.u_component = uv[0];
     term.v_component = uv[1];
-    term.components = components(kField, stack, uv);
-    const int nc = vh->N;
-    for (int c : uv)
-      if (c >= nc) throw dlmfsi::Error("convect: velocity component " + std::to_string(c) + " out of range (the space has " + std::to_string(nc) + ")");
-    for (int c : term.components)
-      if (c >= nc) throw dlmfsi::Error("convect: field component " + std::to_string(c) + " out of range (the space has " + std::to_string(nc) + ")");
+    std::vector<int> all(vh->N);  // the field's default with a space of its own: all its components
+    for (int c = 0; c < vh->N; ++c) all[c] = c;
+    term.components = components(kField, stack, TwoSpaces ? all : uv);
+    check_components(uv, *uh, "velocity");
+    check_components(term.components, *vh, "field");
     term.dt = GetAny<double>((*dt)(stack));
     term.c = nargs[kC] ? GetAny<double>((*nargs[kC])(stack)) : 1.0;
     const long q = nargs[kQforder] ? GetAny<long>((*nargs[kQforder])(stack)) : 5L;
     if (q < 0 || q > 60) throw dlmfsi::Error("convect: qforder=" + std::to_string(q) + " out of range (0 to 60)");
     term.degree = static_cast<int>(q);
-    // The side is prepared on the velocity's and the field's components together.
-    std::vector<int> prepared = uv;
-    for (int c : term.components)
-      if (std::find(prepared.begin(), prepared.end(), c) == prepared.end()) prepared.push_back(c);
+    // One space: its side prepared on the velocity's and the field's components together.
+    std::vector<int> prepared = term.components;
+    if (!TwoSpaces)
+      for (int c : uv)
+        if (std::find(prepared.begin(), prepared.end(), c) == prepared.end()) prepared.push_back(c);
     std::sort(prepared.begin(), prepared.end());
-    const dlmfsi::FluidSide& side = dlmfsi_convect_side(*vh, prepared);
+    const dlmfsi::FluidSide& side = dlmfsi_convect_side(*vh, prepared, 0);
+    std::vector<int> velocity_prepared = uv;
+    std::sort(velocity_prepared.begin(), velocity_prepared.end());
+    const dlmfsi::FluidSide* velocity_side = TwoSpaces ? &dlmfsi_convect_side(*uh, velocity_prepared, 1) : nullptr;
     term.velocity = &(*u)[0];
     term.field = &(*f)[0];
-    const dlmfsi::Characteristics characteristics(side, term);
+    const dlmfsi::Characteristics characteristics(side, term, velocity_side);
     dlmfsi::CharacteristicsReport report;
+    const int n = vh->NbOfDF;
     std::vector<double> result(n);
     characteristics.assemble(result.data(), &report);
     b->resize(n);
@@ -161,6 +193,7 @@ class NotTwoD : public E_F0mps {
 }  // namespace
 
 void dlmfsi_register_convect() {
-  Global.Add("dlmfsiconvect", "(", new OneOperatorCode<ConvectOp>);
+  Global.Add("dlmfsiconvect", "(", new OneOperatorCode<ConvectOp<false> >);
+  Global.Add("dlmfsiconvect", "(", new OneOperatorCode<ConvectOp<true> >);
   Global.Add("dlmfsiconvect", "(", new OneOperatorCode<NotTwoD<pfes3*> >);
 }

@@ -68,11 +68,12 @@ FluidCache& fluid_cache() {
 
 }  // namespace
 
-// The fluid side of dlmfsiconvect (convect.cpp), kept apart from the coupling's, so that the two calls of a
-// time step do not take turns rebuilding one cache when their components differ.
-const dlmfsi::FluidSide& dlmfsi_convect_side(const FESpace& vh, const std::vector<int>& components) {
-  static FluidCache* cache = new FluidCache;  // never destroyed, as the coupling's
-  return cache->get(vh, components);
+// The fluid sides of dlmfsiconvect (convect.cpp): slot 0 the field's, slot 1 the velocity's when it has a space
+// of its own; kept apart from the coupling's, so that the calls of a time step do not take turns rebuilding
+// one cache when their spaces or components differ.
+const dlmfsi::FluidSide& dlmfsi_convect_side(const FESpace& vh, const std::vector<int>& components, int slot) {
+  static FluidCache* cache[2] = {new FluidCache, new FluidCache};  // never destroyed, as the coupling's
+  return cache[slot]->get(vh, components);
 }
 
 namespace {

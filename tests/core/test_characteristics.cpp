@@ -220,6 +220,48 @@ TEST(Characteristics, AUniformVelocityGivesTheMassMatrixTimesTheShiftedField) {
   EXPECT_EQ(report.points, 7L * s.mesh.size());
 }
 
+TEST(Characteristics, AScalarFieldCarriedByAVelocityOfAnotherSpace) {
+  // A scalar P1 field on the square, the velocity a uniform [P1, P1] field of its own side: the P1 mass matrix
+  // times the shifted linear field on the rows whose support's feet stay inside, as for one space.
+  const Square s;
+  const test::P1 scalar(s.mesh);
+  const FluidSide field_side(s.mesh, scalar, {0});
+  const Point w{-0.2, 0.4};
+  const double dt = -0.1;  // the feet are x + (0.02, -0.04)
+  const std::vector<double> velocity = s.interpolate([&](Point) { return w.x; }, [&](Point) { return w.y; });
+  auto f = [](Point x) { return 2 - x.x + 3 * x.y; };
+  std::vector<double> values(s.mesh.vertices.size()), shifted(values.size());
+  for (size_t v = 0; v < values.size(); ++v) {
+    const Point x = s.mesh.vertices[v];
+    values[v] = f(x);
+    shifted[v] = f({x.x + dt * w.x, x.y + dt * w.y});
+  }
+  CharacteristicsTerm term;
+  term.velocity = velocity.data();
+  term.field = values.data();
+  term.components = {0};
+  term.dt = dt;
+  std::vector<double> b(values.size());
+  Characteristics(field_side, term, &s.side).assemble(b.data());
+  // the reference: the scalar mass matrix times the shifted values (component 0 of the vector helper)
+  std::vector<double> both(2 * values.size(), 0.0);
+  for (size_t v = 0; v < values.size(); ++v) both[2 * v] = shifted[v];
+  const std::vector<double> reference = s.mass_times(both);
+  int rows = 0;
+  for (size_t v = 0; v < values.size(); ++v) {
+    const Point x = s.mesh.vertices[v];
+    if (x.x > 0.85 || x.y < 0.15) continue;  // support reaching the outflow sides' feet
+    EXPECT_NEAR(b[v], reference[2 * v], 1e-15) << "vertex " << v;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 81);
+  // a velocity side on another mesh is refused
+  const Mesh other = test::grid_mesh(10, 10, 0, 0, 1, 2);
+  const test::VectorP1 other_space(other);
+  const FluidSide other_side(other, other_space, {0, 1});
+  EXPECT_THROW(Characteristics(field_side, term, &other_side), Error);
+}
+
 TEST(Characteristics, BadInputIsNamed) {
   const Square s;
   std::vector<double> w = s.interpolate([](Point) { return 1.0; }, [](Point) { return 0.0; });
