@@ -104,7 +104,8 @@ class ConvectOp : public E_F0mps {
 void check_values(const KN<double>* a, const FESpace& vh, const char* what) {
   if (!a || a->N() != vh.NbOfDF)
     throw dlmfsi::Error(std::string("convect: the ") + what + " has " + std::to_string(a ? a->N() : 0) +
-                        " values, its space " + std::to_string(vh.NbOfDF) + " dofs (pass the space's vector, e.g. uo[])");
+                        " values, its space " + std::to_string(vh.NbOfDF) +
+                        " dofs (pass the space's vector, e.g. uo[])");
 }
 
 void check_components(const std::vector<int>& list, const FESpace& vh, const char* what) {

@@ -271,7 +271,8 @@ TEST(Characteristics, BadInputIsNamed) {
     Characteristics(s.side, uniform_term(w, -0.1)).assemble(b.data());
     FAIL() << "a NaN velocity was traced";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("the velocity is not finite in fluid triangle"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("the velocity is not finite in fluid triangle"), std::string::npos)
+        << e.what();
   }
   const std::vector<double> ok = s.interpolate([](Point) { return 1.0; }, [](Point) { return 0.0; });
   CharacteristicsTerm term = uniform_term(ok, std::numeric_limits<double>::infinity());
@@ -284,7 +285,8 @@ TEST(Characteristics, BadInputIsNamed) {
   EXPECT_THROW(Characteristics(s.side, term), Error);
   // Towards a point inside a triangle for a very long time: each straight stretch overshoots it, and the walk
   // zigzags across it.
-  const std::vector<double> sink = s.interpolate([](Point x) { return 0.53 - x.x; }, [](Point x) { return 0.47 - x.y; });
+  const std::vector<double> sink =
+      s.interpolate([](Point x) { return 0.53 - x.x; }, [](Point x) { return 0.47 - x.y; });
   try {
     Characteristics(s.side, uniform_term(sink, 1e12)).assemble(b.data());
     FAIL() << "an endless walk was not stopped";
