@@ -290,6 +290,7 @@ void dlmfsi_register_supermesh();  // plugin/freefem/supermesh.cpp
 void dlmfsi_register_3d();         // plugin/freefem/dlmfsi3d.cpp
 void dlmfsi_register_convect();    // plugin/freefem/convect.cpp
 void dlmfsi_register_matrix_sort();  // plugin/freefem/matrix_sort.cpp
+void dlmfsi_register_patch_matrix(); // plugin/freefem/patch_matrix.cpp
 
 static void Load_Init() {
   Global.Add("dlmfsi", "(", new OneOperatorCode<DlmfsiOp>);
@@ -302,6 +303,7 @@ static void Load_Init() {
   dlmfsi_register_supermesh();
   dlmfsi_register_convect();
   dlmfsi_register_matrix_sort();
+  dlmfsi_register_patch_matrix();
 }
 
 LOADFUNC(Load_Init)
