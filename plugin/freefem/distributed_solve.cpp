@@ -57,6 +57,7 @@
 #include <vector>
 
 #include "adapter.hpp"
+#include "matrix_triplets.hpp"
 #include "share_sum.hpp"
 
 namespace {
@@ -200,7 +201,7 @@ void read_share(Matrice_Creuse<double>* a, const KN_<double>& b, long& n, std::v
   n = rn;
   for (long i = 0; i < b.N(); ++i)
     if (!std::isfinite(b[i])) throw Failure("the right-hand side holds NaN or Inf (entry " + std::to_string(i) + ")");
-  const std::vector<dlmfsi::Triplet> t = dlmfsi_ff::share_triplets(a, "dlmfsisolve");
+  const std::vector<dlmfsi::Triplet> t = dlmfsi_ff::matrix_triplets(a, "dlmfsisolve");
   rows.resize(t.size());
   cols.resize(t.size());
   values.resize(t.size());

@@ -10,33 +10,25 @@
 // dlmfsi_register_patch_matrix(), called from dlmfsi.cpp's Load_Init.
 #include "ff++.hpp"
 
-#include <cmath>
 #include <string>
 #include <vector>
 
 #include "adapter.hpp"
 #include "errors.hpp"
+#include "matrix_triplets.hpp"
 #include "sparse.hpp"
 
 void dlmfsi_register_patch_matrix();
 
 namespace {
 
-using Hash = HashMatrix<int, double>;
-
-// The entries of a FreeFEM matrix (its own storage, 0-based), or nothing for an empty one.
-const Hash* entries(Matrice_Creuse<double>* a, const char* name, int rows, int cols) {
-  if (!a) throw dlmfsi::Error(std::string("patch: ") + name + " is not defined");
-  const Hash* h = a->pHM();
-  if (!h) {
-    if (a->A) throw dlmfsi::Error(std::string("patch: ") + name + " is not a sparse matrix FreeFEM assembled");
-    return nullptr;
-  }
-  if (h->n != rows || h->m != cols)
-    throw dlmfsi::Error(std::string("patch: ") + name + " is " + std::to_string(h->n) + " x " + std::to_string(h->m) +
-                        ", expected " + std::to_string(rows) + " x " + std::to_string(cols));
-  if (h->half) throw dlmfsi::Error(std::string("patch: ") + name + " is stored as a symmetric half");
-  return h;
+// A block's entries (matrix_triplets: a lower half unfolded, NaN refused), its size checked.
+std::vector<dlmfsi::Triplet> block(Matrice_Creuse<double>* a, const char* name, int rows, int cols) {
+  std::vector<dlmfsi::Triplet> t = dlmfsi_ff::matrix_triplets(a, std::string("patch: ") + name);
+  if (a->pHM() && (a->N() != rows || a->M() != cols))
+    throw dlmfsi::Error(std::string("patch: ") + name + " is " + std::to_string(a->N()) + " x " +
+                        std::to_string(a->M()) + ", expected " + std::to_string(rows) + " x " + std::to_string(cols));
+  return t;
 }
 
 class PatchOp : public E_F0mps {
@@ -60,54 +52,37 @@ class PatchOp : public E_F0mps {
 };
 
 AnyType PatchOp::operator()(Stack stack) const {
-  dlmfsi_ff::last_error().clear();
-  std::string failure;
-  dlmfsi::CsrMatrix p;
-  try {
+  return dlmfsi_ff::guarded([&]() -> AnyType {
     Matrice_Creuse<double>* mab = GetAny<Matrice_Creuse<double>*>((*ab)(stack));
     if (!mab || !mab->pHM()) throw dlmfsi::Error("patch: AB is not a sparse matrix FreeFEM assembled");
-    const int nr = mab->pHM()->n, nz = mab->pHM()->m;
+    const int nr = mab->N(), nz = mab->M();
     const KN_<long> patch = GetAny<KN_<long> >((*ip)(stack));
     const int np = patch.N();
     std::vector<int> local(nz, -1);  // fluid dof -> its place in the patch
     for (int k = 0; k < np; ++k) {
       if (patch[k] < 0 || patch[k] >= nz || local[patch[k]] >= 0)
         throw dlmfsi::Error("patch: Ip[" + std::to_string(k) + "] = " + std::to_string(patch[k]) +
-                            (patch[k] < 0 || patch[k] >= nz ? " is not a fluid dof (0 to " + std::to_string(nz - 1) + ")"
-                                                            : " is listed twice"));
+                            (patch[k] < 0 || patch[k] >= nz
+                                 ? " is not a fluid dof (0 to " + std::to_string(nz - 1) + ")"
+                                 : " is listed twice"));
       local[patch[k]] = k;
     }
-    const Hash* happ = entries(GetAny<Matrice_Creuse<double>*>((*app)(stack)), "App", np, np);
-    const Hash* hba = entries(GetAny<Matrice_Creuse<double>*>((*ba)(stack)), "BA", nz, nr);
-    const Hash* hab = entries(mab, "AB", nr, nz);
-    const Hash* hbb = entries(GetAny<Matrice_Creuse<double>*>((*bb)(stack)), "BB", nr, nr);
     std::vector<std::vector<dlmfsi::Triplet>> parts(1);
     std::vector<dlmfsi::Triplet>& t = parts[0];
-    auto add = [&](const Hash* h, auto&& place) {
-      if (!h) return;
-      const int base = h->fortran ? 1 : 0;
-      for (size_t k = 0; k < h->nnz; ++k) {
-        if (!std::isfinite(h->aij[k])) throw dlmfsi::Error("patch: a block holds NaN or Inf");
-        place(h->i[k] - base, h->j[k] - base, h->aij[k]);
-      }
-    };
-    add(happ, [&](int i, int j, double v) { t.push_back({i, j, v}); });
-    add(hba, [&](int i, int j, double v) {
-      if (local[i] >= 0) t.push_back({local[i], np + j, v});
-    });
-    add(hab, [&](int i, int j, double v) {
-      if (local[j] >= 0) t.push_back({np + i, local[j], v});
-    });
-    add(hbb, [&](int i, int j, double v) { t.push_back({np + i, np + j, v}); });
-    p = dlmfsi::compress(np + nr, np + nr, parts);
-  } catch (...) {
-    failure = dlmfsi_ff::current_message();
-  }
-  if (!failure.empty()) dlmfsi_ff::fail(failure);
-  MatriceMorse<double>* pa = new MatriceMorse<double>(p.rows, p.cols, 0, 0);
-  pa->set(p.rows, p.cols, 0, p.value.size(), p.start.data(), p.column.data(), p.value.data(), 0, 1);
-  pa->state = Hash::sorted_ij;  // compressed rows, columns ascending: FreeFEM's sort would change nothing
-  return SetAny<newpMatrice_Creuse<double> >(newpMatrice_Creuse<double>(stack, pa));
+    t = block(GetAny<Matrice_Creuse<double>*>((*app)(stack)), "App", np, np);
+    for (const dlmfsi::Triplet& e : block(GetAny<Matrice_Creuse<double>*>((*ba)(stack)), "BA", nz, nr))
+      if (local[e.row] >= 0) t.push_back({local[e.row], np + e.col, e.value});
+    for (const dlmfsi::Triplet& e : block(mab, "AB", nr, nz))
+      if (local[e.col] >= 0) t.push_back({np + e.row, local[e.col], e.value});
+    for (const dlmfsi::Triplet& e : block(GetAny<Matrice_Creuse<double>*>((*bb)(stack)), "BB", nr, nr))
+      t.push_back({np + e.row, np + e.col, e.value});
+    dlmfsi::CsrMatrix p = dlmfsi::compress(np + nr, np + nr, parts);
+    MatriceMorse<double>* pa = new MatriceMorse<double>(p.rows, p.cols, 0, 0);
+    pa->set(p.rows, p.cols, 0, p.value.size(), p.start.data(), p.column.data(), p.value.data(), 0, 1);
+    // compressed rows, columns ascending: FreeFEM's sort would change nothing
+    pa->state = HashMatrix<int, double>::sorted_ij;
+    return SetAny<newpMatrice_Creuse<double> >(newpMatrice_Creuse<double>(stack, pa));
+  });
 }
 
 }  // namespace

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "adapter.hpp"
+#include "matrix_triplets.hpp"
 #include "share_sum.hpp"
 #include "sparse.hpp"
 
@@ -65,7 +66,7 @@ AnyType SumOp::operator()(Stack stack) const {
   std::vector<dlmfsi::Triplet> share;
   try {
     Matrice_Creuse<double>* a = GetAny<Matrice_Creuse<double>*>((*matrix)(stack));
-    share = dlmfsi_ff::share_triplets(a, "dlmfsisum");
+    share = dlmfsi_ff::matrix_triplets(a, "dlmfsisum");
     mine.rows = a->N();
     mine.cols = a->M();
     if (share.size() > static_cast<size_t>(INT_MAX / 2)) throw Failure("a share of more than 1e9 entries");
@@ -119,28 +120,6 @@ AnyType SumOp::operator()(Stack stack) const {
 }  // namespace
 
 namespace dlmfsi_ff {
-
-std::vector<dlmfsi::Triplet> share_triplets(Matrice_Creuse<double>* a, const std::string& caller) {
-  std::vector<dlmfsi::Triplet> t;
-  if (!a) throw std::runtime_error(caller + ": the matrix is not defined");
-  HashMatrix<int, double>* h = a->pHM();
-  if (!h) {
-    if (a->A) throw std::runtime_error(caller + ": the matrix is not a sparse matrix FreeFEM assembled (no entries to read)");
-    return t;
-  }
-  const int base = h->fortran ? 1 : 0;
-  t.reserve(h->half ? 2 * h->nnz : h->nnz);
-  for (size_t k = 0; k < static_cast<size_t>(h->nnz); ++k) {
-    const int i = h->i[k] - base, j = h->j[k] - base;
-    const double v = h->aij[k];
-    if (!std::isfinite(v))
-      throw std::runtime_error(caller + ": the matrix holds NaN or Inf (row " + std::to_string(i) + ", column " +
-                               std::to_string(j) + ")");
-    t.push_back({i, j, v});
-    if (h->half && i != j) t.push_back({j, i, v});
-  }
-  return t;
-}
 
 void add_share_sum() { Global.Add("dlmfsisum", "(", new OneOperatorCode<SumOp>); }
 
