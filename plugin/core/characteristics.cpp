@@ -73,8 +73,13 @@ Characteristics::Characteristics(const FluidSide& side, const CharacteristicsTer
   terms_ = monomial_count(basis.degree());
   velocity_terms_ = monomial_count(velocity_side_.basis().degree());
   step_ = std::ldexp(term.dt, -side.scale());
-  velocity_ = local_polynomials(velocity_side_, term.velocity, {term.u_component, term.v_component});
-  field_ = local_polynomials(side, term.field, term.components);
+  const std::vector<int> uv{term.u_component, term.v_component};
+  velocity_ = local_polynomials(velocity_side_, term.velocity, uv);
+  // The field that is the velocity itself (the momentum's characteristics: convect([u,v],dt,u), ...(v)) has
+  // the same polynomials: formed once.
+  if (&velocity_side_ != &side || term.field != term.velocity || term.components != uv)
+    own_field_ = local_polynomials(side, term.field, term.components);
+  field_ = own_field_.empty() ? &velocity_ : &own_field_;
   const int nc = side.space().components();
   const std::vector<int>& functions = basis.functions();
   for (size_t f = 0; f < functions.size(); ++f) {
@@ -231,7 +236,7 @@ void Characteristics::integrate(double* b, CharacteristicsReport* report) const 
     for (int q = 0; q < n; ++q) {
       const Foot foot = walk<NV>(k, points[q], report);
       monomials_at<NF>(basis.degree(), foot.xi, m);
-      const double* f = &field_[static_cast<size_t>(foot.k) * slots * terms_];
+      const double* f = &(*field_)[static_cast<size_t>(foot.k) * slots * terms_];
       for (int s = 0; s < slots; ++s) g[q * slots + s] = rule[q].weight * polynomial<NF>(f + s * terms_, m, terms_);
     }
     if (report) report->points += n;

@@ -50,6 +50,8 @@ class Characteristics {
   // (side itself when velocity_side is null) on u_component and v_component; the two sides on one mesh (the
   // same triangles: the same Morton order). Throws Error naming what is wrong.
   Characteristics(const FluidSide& side, const CharacteristicsTerm& term, const FluidSide* velocity_side = nullptr);
+  Characteristics(const Characteristics&) = delete;  // field_ may point at its own velocity_
+  Characteristics& operator=(const Characteristics&) = delete;
 
   // The walk from reference point xi of triangle k (side numbering) for the term's time.
   Foot trace(int k, Point xi, CharacteristicsReport* report = nullptr) const;
@@ -80,7 +82,8 @@ class Characteristics {
   int velocity_terms_ = 0;          // monomials per velocity component
   double step_ = 0;                 // dt in the side's (scaled) coordinates
   std::vector<double> velocity_;    // u and v on each triangle
-  std::vector<double> field_;       // the field's components on each triangle
+  std::vector<double> own_field_;   // the field's components on each triangle, unless it is the velocity
+  const std::vector<double>* field_ = nullptr;  // own_field_ or velocity_
   std::vector<int> tested_;         // the fitted functions tested (indices in functions())
   std::vector<int> tested_slot_;    // the slot of each one's component in term_.components
 };
