@@ -7,36 +7,74 @@ namespace dlmfsi {
 
 constexpr int kMaxPolynomialMapDegree = 6;
 
-// x = X(xi), dx1 = dX/dxi1 and dx2 = dX/dxi2 from the coefficients cx, cy of degree D >= 0 (constant: the
-// loops unroll) or, for D < 0, of the run-time degree d.
-template <int D>
-void evaluate_polynomial(int d, const double* cx, const double* cy, Point xi, Point& x, Point& dx1, Point& dx2) {
-  const int degree = D >= 0 ? D : d;
-  double p1[kMaxPolynomialMapDegree + 1], p2[kMaxPolynomialMapDegree + 1];
-  powers(degree, xi, p1, p2);
-  // d/dxi1 xi1^a xi2^b = a xi1^(a-1) xi2^b, d/dxi2 xi1^a xi2^b = b xi1^a xi2^(b-1).
-  // Local sums: the outputs may alias memory the compiler cannot keep in registers.
-  double x0 = cx[0], x1 = cy[0], a0 = 0, a1 = 0, b0 = 0, b1 = 0;
+// The coefficients of dX/dxi1 and dX/dxi2 (degree d - 1, the same monomial order) from those of X (degree
+// d >= 1): d/dxi1 xi1^a xi2^b = a xi1^(a-1) xi2^b, d/dxi2 xi1^a xi2^b = b xi1^a xi2^(b-1).
+inline void derive_polynomial(int d, const double* c, double* d1, double* d2) {
+  const int n1 = monomial_count(d - 1);
+  for (int m = 0; m < n1; ++m) d1[m] = d2[m] = 0;
   int m = 1;
-#pragma GCC unroll 8
-  for (int t = 1; t <= degree; ++t) {
-#pragma GCC unroll 8
+  for (int t = 1; t <= d; ++t)
     for (int b = 0; b <= t; ++b, ++m) {
-      const int a = t - b;
-      const double v = p1[a] * p2[b];
-      x0 += cx[m] * v;
-      x1 += cy[m] * v;
-      if (a > 0) {
-        const double g = a * p1[a - 1] * p2[b];
-        a0 += cx[m] * g;
-        a1 += cy[m] * g;
-      }
-      if (b > 0) {
-        const double g = b * p1[a] * p2[b - 1];
-        b0 += cx[m] * g;
-        b1 += cy[m] * g;
-      }
+      const int a = t - b, below = (t - 1) * t / 2;  // the first monomial of degree t - 1
+      if (a > 0) d1[below + b] = a * c[m];
+      if (b > 0) d2[below + b - 1] = b * c[m];
     }
+}
+
+// The coefficients of X of degree d and of its derivatives (derive_polynomial), each monomial's (x, y) pair
+// side by side so that a monomial's term is one vector multiply-add. Not initialized: set() fills them.
+struct PolynomialMapCoefficients {
+  static constexpr int kTerms = monomial_count(kMaxPolynomialMapDegree);
+  static constexpr int kDerivativeTerms = monomial_count(kMaxPolynomialMapDegree - 1);
+  double x[2 * kTerms], d1[2 * kDerivativeTerms], d2[2 * kDerivativeTerms];
+  // From the coefficients cx, cy of X and Y (degree d, 1 <= d <= kMaxPolynomialMapDegree).
+  void set(int d, const double* cx, const double* cy) {
+    if (d == 1) {  // X = c0 + c1 xi1 + c2 xi2: constant derivatives
+      for (int m = 0; m < 3; ++m) {
+        x[2 * m] = cx[m];
+        x[2 * m + 1] = cy[m];
+      }
+      d1[0] = cx[1], d1[1] = cy[1], d2[0] = cx[2], d2[1] = cy[2];
+      return;
+    }
+    const int n = monomial_count(d), n1 = monomial_count(d - 1);
+    double e1x[kDerivativeTerms], e1y[kDerivativeTerms], e2x[kDerivativeTerms], e2y[kDerivativeTerms];
+    derive_polynomial(d, cx, e1x, e2x);
+    derive_polynomial(d, cy, e1y, e2y);
+    for (int m = 0; m < n; ++m) {
+      x[2 * m] = cx[m];
+      x[2 * m + 1] = cy[m];
+    }
+    for (int m = 0; m < n1; ++m) {
+      d1[2 * m] = e1x[m];
+      d1[2 * m + 1] = e1y[m];
+      d2[2 * m] = e2x[m];
+      d2[2 * m + 1] = e2y[m];
+    }
+  }
+};
+
+// x = X(xi), dx1 = dX/dxi1 and dx2 = dX/dxi2 from the coefficients c of degree D (1 <= D <=
+// kMaxPolynomialMapDegree, a constant: the loops unroll): the monomials' values once, then three sums of terms.
+template <int D>
+void evaluate_polynomial(const PolynomialMapCoefficients& c, Point xi, Point& x, Point& dx1, Point& dx2) {
+  static_assert(D >= 1 && D <= kMaxPolynomialMapDegree, "a polynomial map's degree");
+  double v[monomial_count(D)];
+  monomial_values(D, xi, v);
+  constexpr int n = monomial_count(D), n1 = monomial_count(D - 1);
+  // Local sums: the outputs may alias memory the compiler cannot keep in registers.
+  double x0 = 0, x1 = 0, a0 = 0, a1 = 0, b0 = 0, b1 = 0;
+#pragma GCC unroll 28
+  for (int m = 0; m < n; ++m) {
+    x0 += c.x[2 * m] * v[m];
+    x1 += c.x[2 * m + 1] * v[m];
+  }
+#pragma GCC unroll 21
+  for (int m = 0; m < n1; ++m) {
+    a0 += c.d1[2 * m] * v[m];
+    a1 += c.d1[2 * m + 1] * v[m];
+    b0 += c.d2[2 * m] * v[m];
+    b1 += c.d2[2 * m + 1] * v[m];
   }
   x = {x0, x1};
   dx1 = {a0, a1};

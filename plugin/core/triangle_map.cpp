@@ -31,7 +31,8 @@ void TriangleMap::fit(const Mesh& solid_mesh, const SolidMap& map, int kk) {
   if (degree_ < 1) return;
   // c = V^-1 (X at the lattice points), V the lattice's Vandermonde matrix, unless the map gives c.
   const int n = monomial_count(degree_);
-  if (!map.coefficients(k, cx_, cy_)) {
+  double cx[monomial_count(kMaxDegree)], cy[monomial_count(kMaxDegree)];
+  if (!map.coefficients(k, cx, cy)) {
     double vx[monomial_count(kMaxDegree)], vy[monomial_count(kMaxDegree)];
     for (int p = 0; p < n; ++p) {
       const Point x = map.evaluate(k, lattice_point(degree_, p)).x;
@@ -40,23 +41,26 @@ void TriangleMap::fit(const Mesh& solid_mesh, const SolidMap& map, int kk) {
     }
     const auto& inv = vandermonde_inverse(degree_);
     for (int m = 0; m < n; ++m) {
-      cx_[m] = cy_[m] = 0;
+      cx[m] = cy[m] = 0;
       for (int p = 0; p < n; ++p) {
-        cx_[m] += inv[m * n + p] * vx[p];
-        cy_[m] += inv[m * n + p] * vy[p];
+        cx[m] += inv[m * n + p] * vx[p];
+        cy[m] += inv[m * n + p] * vy[p];
       }
     }
   }
   for (int m = 0; m < n; ++m)
-    if (!std::isfinite(cx_[m]) || !std::isfinite(cy_[m])) throw Error("the map is NaN or Inf in " + name());
+    if (!std::isfinite(cx[m]) || !std::isfinite(cy[m])) throw Error("the map is NaN or Inf in " + name());
+  c_.set(degree_, cx, cy);
 }
 
 void TriangleMap::polynomial(Point xi, Point& x, Point& dx1, Point& dx2) const {
   switch (degree_) {
-    case 1: evaluate_polynomial<1>(1, cx_, cy_, xi, x, dx1, dx2); break;
-    case 2: evaluate_polynomial<2>(2, cx_, cy_, xi, x, dx1, dx2); break;
-    case 3: evaluate_polynomial<3>(3, cx_, cy_, xi, x, dx1, dx2); break;
-    default: evaluate_polynomial<-1>(degree_, cx_, cy_, xi, x, dx1, dx2); break;
+    case 1: evaluate_polynomial<1>(c_, xi, x, dx1, dx2); break;
+    case 2: evaluate_polynomial<2>(c_, xi, x, dx1, dx2); break;
+    case 3: evaluate_polynomial<3>(c_, xi, x, dx1, dx2); break;
+    case 4: evaluate_polynomial<4>(c_, xi, x, dx1, dx2); break;
+    case 5: evaluate_polynomial<5>(c_, xi, x, dx1, dx2); break;
+    default: evaluate_polynomial<6>(c_, xi, x, dx1, dx2); break;  // fitted(): degree_ <= kMaxDegree
   }
 }
 

@@ -38,7 +38,7 @@ class TriangleMap {
     for (int t = 0; t <= degree_; ++t) {
       const int m = t * (t + 1) / 2 + (i == 2 ? t : 0);
       if (t > 0 && i == 0) break;
-      x = x + Point{cx_[m], cy_[m]};
+      x = x + Point{c_.x[2 * m], c_.x[2 * m + 1]};
     }
     return x;
   }
@@ -76,7 +76,7 @@ class TriangleMap {
  private:
   const SolidMap* map_ = nullptr;
   int degree_ = -1;
-  double cx_[monomial_count(kMaxDegree)], cy_[monomial_count(kMaxDegree)];  // monomial coefficients of X, Y
+  PolynomialMapCoefficients c_;  // monomial coefficients of X, Y and of their derivatives
   double inv_[2][2];                                                        // (d s / d xi)^-1
 };
 
