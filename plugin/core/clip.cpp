@@ -70,12 +70,18 @@ Piece clip(const Point a[3], const Point b[3], unsigned& beyond) {
     const int j = beyond == 1 ? 0 : (beyond == 2 ? 1 : 2), j1 = (j + 1) % 3;
     const int* side = side_ab[j];
     if (side[0] != 0 && side[1] != 0 && side[2] != 0) {
+      // With a's vertices strictly inside the other two edges' lines, a cut edge of a stays strictly inside
+      // them, so it meets line j strictly between b[j] and b[j1] (the line and those two open half-planes
+      // meet in the open edge): a proper crossing, without asking. Otherwise ask (a cut edge through a
+      // vertex of b).
+      const int *other = side_ab[j1], *other2 = side_ab[(j + 2) % 3];
       bool proper = true;
-      for (int i = 0; i < 3 && proper; ++i) {
-        const int i1 = (i + 1) % 3;
-        if (side[i] != side[i1])
-          proper = orient2d(a[i], a[i1], b[j]) * orient2d(a[i], a[i1], b[j1]) < 0;
-      }
+      if (!(other[0] > 0 && other[1] > 0 && other[2] > 0 && other2[0] > 0 && other2[1] > 0 && other2[2] > 0))
+        for (int i = 0; i < 3 && proper; ++i) {
+          const int i1 = (i + 1) % 3;
+          if (side[i] != side[i1])
+            proper = orient2d(a[i], a[i1], b[j]) * orient2d(a[i], a[i1], b[j1]) < 0;
+        }
       if (proper) {
         for (int i = 0; i < 3; ++i) {
           const int i1 = (i + 1) % 3;
