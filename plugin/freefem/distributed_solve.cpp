@@ -21,12 +21,14 @@
 // solution broadcast from it. The analysis (fill-reducing ordering, symbolic factorization) and the
 // numerical factorization are kept per id: the next call with an id reuses the factorization when no
 // process's share changed, and the analysis when no process's share changed pattern (the sparsity
-// pattern, entries in the same order); the processes agree on that collectively. The ordering is MUMPS's
-// automatic choice, computed on the host (ICNTL(7) = 7, ICNTL(28) = 1). Debian's parallel MUMPS is built
-// without METIS and Scotch (a parallel analysis, ICNTL(28) = 2, fails with -38): on the scenes the choice
-// is PORD, which fills least of what there is (rotating disk n=10: 6.95e6 entries in the factors, AMF
-// 7.84e6, AMD 8.17e6), and on tiny systems an approximate minimum degree (PORD forced on a 2 x 2 system
-// exits the program). The same ordering for any number of processes, so runs repeat bit for bit.
+// pattern, entries in the same order); the processes agree on that collectively. The analysis is sequential,
+// on the host (ICNTL(28) = 1), with METIS's nested dissection of the whole pattern as the pivot order
+// (fill_ordering.hpp, ICNTL(7) = 1; from 1,000 unknowns, when the build has libmetis-dev): Debian's parallel
+// MUMPS is built without METIS and Scotch (a parallel analysis, ICNTL(28) = 2, fails with -38), and its own
+// choice, PORD (rotating disk n=10: 6.95e6 entries in the factors, AMF 7.84e6, AMD 8.17e6), fills the falling
+// sphere's 3D fluid block (n = 4) with 19.4e6 entries against nested dissection's 14.6e6. Smaller systems, and
+// builds without METIS, get MUMPS's automatic choice (ICNTL(7) = 7; PORD forced on a 2 x 2 system exits the
+// program). The same ordering for any number of processes.
 //
 // With kept=true the call only solves: A is the matrix of the id's last factorization, not read again (its
 // size is checked), and a missing factorization is an error. A loop of solves with one matrix (the Schur
@@ -57,13 +59,14 @@
 #include <vector>
 
 #include "adapter.hpp"
+#include "fill_ordering.hpp"
 #include "matrix_triplets.hpp"
 #include "share_sum.hpp"
 
 namespace {
 
 constexpr long kMaxId = 1000;          // ids 0 .. kMaxId - 1
-constexpr int kStats = 12;             // entries of dlmfsisolvestats
+constexpr int kStats = 13;             // entries of dlmfsisolvestats
 constexpr int kMemoryRetries = 4;      // workspace estimate doubled at most this many times
 
 // An input that does not fit (the message says which); raised on every process as a FreeFEM ExecError.
@@ -108,6 +111,8 @@ struct Kept {
   double memory_mb = 0;   // this process's MUMPS data during the last factorization, INFO(16)
   double factor_entries = 0;  // entries in the factors, all processes (INFOG(29))
   double delayed = 0;     // delayed pivots (INFOG(13)): how far threshold pivoting strayed from the ordering
+  std::vector<MUMPS_INT> order;  // the host's pivot order given to MUMPS (PERM_IN), empty: MUMPS's choice
+  double ordering = -1;   // the ordering MUMPS used (INFOG(7): 1 given, i.e. METIS's; 0 AMD, 2 AMF, 4 PORD, 6 QAMD)
 
   ~Kept() { terminate(); }
   void terminate() {
@@ -220,6 +225,37 @@ std::string run(Kept& k, int job, const char* phase) {
   return k.m.infog[0] < 0 ? engine_error(k.m, phase) : "";
 }
 
+// The pivot order of the next analysis: METIS's nested dissection of the whole pattern, gathered on the host
+// (fill_ordering.hpp), given to MUMPS (ICNTL(7) = 1); MUMPS's automatic choice (ICNTL(7) = 7) in a build
+// without METIS, for small systems, or when METIS gives none. Collective; the same for any number of
+// processes (the same pattern), so runs repeat bit for bit.
+void choose_ordering(Kept& k, int rank) {
+  static_assert(sizeof(MUMPS_INT) == sizeof(int), "32-bit MUMPS indices");
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  long mine = static_cast<long>(k.rows.size()), total = 0;
+  MPI_Allreduce(&mine, &total, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
+  k.order.clear();
+  int given = 0;
+  if (dlmfsi_ff::have_nested_dissection() && k.n >= dlmfsi_ff::kMinNestedDissection && total <= INT_MAX) {
+    const int count = static_cast<int>(mine);
+    std::vector<int> counts(rank == 0 ? size : 0), offsets(rank == 0 ? size : 0);
+    MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+    std::vector<int> rows(rank == 0 ? total : 0), cols(rank == 0 ? total : 0);
+    if (rank == 0)
+      for (int r = 1; r < size; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+    MPI_Gatherv(k.rows.data(), count, MPI_INT, rows.data(), counts.data(), offsets.data(), MPI_INT, 0, MPI_COMM_WORLD);
+    MPI_Gatherv(k.cols.data(), count, MPI_INT, cols.data(), counts.data(), offsets.data(), MPI_INT, 0, MPI_COMM_WORLD);
+    if (rank == 0) {
+      k.order = dlmfsi_ff::nested_dissection(k.n, rows, cols);
+      given = k.order.empty() ? 0 : 1;
+    }
+    MPI_Bcast(&given, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  }
+  k.m.icntl[6] = given ? 1 : 7;
+  k.m.perm_in = given && rank == 0 ? k.order.data() : nullptr;
+}
+
 void set_controls(DMUMPS_STRUC_C& m) {
   const bool talk = verbosity > 2;
   m.icntl[0] = talk ? 6 : -1;   // error messages
@@ -227,7 +263,7 @@ void set_controls(DMUMPS_STRUC_C& m) {
   m.icntl[2] = talk ? 6 : -1;   // global information (host)
   m.icntl[3] = talk ? 2 : 0;
   m.icntl[4] = 0;               // assembled matrix
-  m.icntl[6] = 7;               // ordering: automatic (PORD or AMD here)
+  m.icntl[6] = 7;               // ordering: automatic (PORD or AMD here), unless choose_ordering gives one
   m.icntl[17] = 3;              // distributed input: each process its own triplets
   m.icntl[19] = 0;              // dense right-hand side on the host
   m.icntl[20] = 0;              // solution gathered on the host
@@ -246,9 +282,11 @@ std::string factor_and_solve(Kept& k, bool analyse, bool factor, std::vector<dou
     k.m.jcn_loc = k.cols.data();
     k.m.a_loc = k.values.data();
     PhaseClock c;
+    choose_ordering(k, rank);
     err = run(k, 1, "analysis");
     c.add_to(k.wall[0], k.cpu[0]);
     if (!err.empty()) return err;
+    k.ordering = k.m.infog[6];
     ++k.count[0];
     k.analysed = true;
     factor = true;
@@ -406,8 +444,9 @@ AnyType SolveOp::operator()(Stack stack) const {
 
 // dlmfsisolvestats(id, s): s = [analyses, factorizations, solves, wall seconds of the analyses, the
 // factorizations, the solves, CPU seconds of the same three (this process), MUMPS memory of this process at
-// the last factorization (MB), entries in the factors (all processes), delayed pivots]. Local: no
-// communication. An id never used gives zeros.
+// the last factorization (MB), entries in the factors (all processes), delayed pivots, the ordering of the
+// last analysis (MUMPS's INFOG(7): 1 METIS's nested dissection given by dlmfsi, 0 AMD, 2 AMF, 4 PORD, 6
+// QAMD)]. Local: no communication. An id never used gives zeros.
 long solve_stats(long const& id, KN<double>* const& s) {
   s->resize(kStats);
   *s = 0.;
@@ -422,6 +461,7 @@ long solve_stats(long const& id, KN<double>* const& s) {
   (*s)[9] = k.memory_mb;
   (*s)[10] = k.factor_entries;
   (*s)[11] = k.delayed;
+  (*s)[12] = k.ordering;
   return 1;
 }
 
