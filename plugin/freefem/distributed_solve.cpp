@@ -228,7 +228,7 @@ std::string run(Kept& k, int job, const char* phase) {
 // The pivot order of the next analysis: METIS's nested dissection of the whole pattern, gathered on the host
 // (fill_ordering.hpp), given to MUMPS (ICNTL(7) = 1); MUMPS's automatic choice (ICNTL(7) = 7) in a build
 // without METIS, for small systems, or when METIS gives none. Collective; the same for any number of
-// processes (the same pattern), so runs repeat bit for bit.
+// processes (the same pattern).
 void choose_ordering(Kept& k, int rank) {
   static_assert(sizeof(MUMPS_INT) == sizeof(int), "32-bit MUMPS indices");
   int size = 1;
