@@ -54,6 +54,7 @@
 #include <cstring>
 #include <map>
 #include <memory>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -238,19 +239,36 @@ void choose_ordering(Kept& k, int rank) {
   k.order.clear();
   int given = 0;
   if (dlmfsi_ff::have_nested_dissection() && k.n >= dlmfsi_ff::kMinNestedDissection && total <= INT_MAX) {
-    const int count = static_cast<int>(mine);
-    std::vector<int> counts(rank == 0 ? size : 0), offsets(rank == 0 ? size : 0);
-    MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
-    std::vector<int> rows(rank == 0 ? total : 0), cols(rank == 0 ? total : 0);
-    if (rank == 0)
-      for (int r = 1; r < size; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
-    MPI_Gatherv(k.rows.data(), count, MPI_INT, rows.data(), counts.data(), offsets.data(), MPI_INT, 0, MPI_COMM_WORLD);
-    MPI_Gatherv(k.cols.data(), count, MPI_INT, cols.data(), counts.data(), offsets.data(), MPI_INT, 0, MPI_COMM_WORLD);
+    // The host's arrays first: without the memory for them (or for METIS) the host says so and MUMPS orders,
+    // rather than one process failing inside a collective call.
+    int room = 1;
+    std::vector<int> rows, cols, counts(rank == 0 ? size : 0), offsets(rank == 0 ? size : 0);
     if (rank == 0) {
-      k.order = dlmfsi_ff::nested_dissection(k.n, rows, cols);
-      given = k.order.empty() ? 0 : 1;
+      try {
+        rows.resize(total);
+        cols.resize(total);
+      } catch (const std::bad_alloc&) {
+        room = 0;
+      }
     }
-    MPI_Bcast(&given, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    MPI_Bcast(&room, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    if (room) {
+      const int count = static_cast<int>(mine);
+      MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+      if (rank == 0)
+        for (int r = 1; r < size; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+      MPI_Gatherv(k.rows.data(), count, MPI_INT, rows.data(), counts.data(), offsets.data(), MPI_INT, 0, MPI_COMM_WORLD);
+      MPI_Gatherv(k.cols.data(), count, MPI_INT, cols.data(), counts.data(), offsets.data(), MPI_INT, 0, MPI_COMM_WORLD);
+      if (rank == 0) {
+        try {
+          k.order = dlmfsi_ff::nested_dissection(k.n, rows, cols);
+        } catch (const std::bad_alloc&) {
+          k.order.clear();
+        }
+      }
+      given = k.order.empty() ? 0 : 1;
+      MPI_Bcast(&given, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    }
   }
   k.m.icntl[6] = given ? 1 : 7;
   k.m.perm_in = given && rank == 0 ? k.order.data() : nullptr;
