@@ -20,9 +20,9 @@ bool have_nested_dissection() {
 
 std::vector<int> nested_dissection(int n, const std::vector<int>& rows, const std::vector<int>& cols) {
 #ifdef DLMFSI_HAVE_METIS
-  if (n < kMinNestedDissection) return {};
   // The graph of A + A^T without loops, in compressed rows: both directions of every off-diagonal entry,
-  // then each vertex's neighbours sorted and without repeats.
+  // then each vertex's neighbours sorted and without repeats. (Not the core's compress(): its triplets carry
+  // values, four times this pattern's memory on the process that holds the whole of it.)
   std::vector<idx_t> start(static_cast<size_t>(n) + 1, 0);
   for (size_t k = 0; k < rows.size(); ++k)
     if (rows[k] != cols[k]) {

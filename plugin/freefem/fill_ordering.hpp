@@ -10,12 +10,14 @@ namespace dlmfsi_ff {
 // Is METIS in this build (DLMFSI_HAVE_METIS)?
 bool have_nested_dissection();
 
+// The size from which the distributed solve asks for a nested dissection (below it a minimum degree is as
+// good, and the pattern is not worth gathering).
+constexpr int kMinNestedDissection = 1000;
+
 // The pivot order of a square matrix of size n whose entries are at the 1-based positions (rows[k], cols[k])
 // (repeats allowed): METIS_NodeND on the graph of A + A^T without its diagonal, as MUMPS's PERM_IN,
-// position[i] = the 1-based position of unknown i + 1 in the order. Empty without METIS, for systems of
-// fewer than kMinNestedDissection unknowns (a minimum degree is as good there), or when METIS fails: the
-// caller lets MUMPS choose. The same pattern gives the same order (METIS's seed is fixed).
-constexpr int kMinNestedDissection = 1000;
+// position[i] = the 1-based position of unknown i + 1 in the order. Empty without METIS or when METIS fails:
+// the caller lets MUMPS choose. The same pattern gives the same order (METIS's seed is fixed).
 std::vector<int> nested_dissection(int n, const std::vector<int>& rows, const std::vector<int>& cols);
 
 }  // namespace dlmfsi_ff
