@@ -23,7 +23,7 @@
 // process's share changed, and the analysis when no process's share changed pattern (the sparsity
 // pattern, entries in the same order); the processes agree on that collectively. The analysis is sequential,
 // on the host (ICNTL(28) = 1), with METIS's nested dissection of the whole pattern as the pivot order
-// (fill_ordering.hpp, ICNTL(7) = 1; from 1,000 unknowns, when the build has libmetis-dev): Debian's parallel
+// (fill_ordering.hpp, ICNTL(7) = 1; from 20,000 unknowns, when the build has libmetis-dev): Debian's parallel
 // MUMPS is built without METIS and Scotch (a parallel analysis, ICNTL(28) = 2, fails with -38), and its own
 // choice, PORD (rotating disk n=10: 6.95e6 entries in the factors, AMF 7.84e6, AMD 8.17e6), fills the falling
 // sphere's 3D fluid block (n = 4) with 19.4e6 entries against nested dissection's 14.6e6. Smaller systems, and

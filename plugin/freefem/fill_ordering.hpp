@@ -10,9 +10,12 @@ namespace dlmfsi_ff {
 // Is METIS in this build (DLMFSI_HAVE_METIS)?
 bool have_nested_dissection();
 
-// The size from which the distributed solve asks for a nested dissection (below it a minimum degree is as
-// good, and the pattern is not worth gathering).
-constexpr int kMinNestedDissection = 1000;
+// The size from which the distributed solve asks for a nested dissection. Below it MUMPS's own choice fills
+// about as little (2D: 6.89e6 entries against 6.83e6 for the rotating disk n=10's larger system), and
+// keeping it keeps small runs as they were: a 2-process run remeshed every step (-remesh 1) follows the solve's
+// round-off, and with METIS's order the falling disk n=10's block system (about 6,400 unknowns) gave a mesh of
+// 889 vertices against one process's 911 after the first remesh in 1 of about 25 runs.
+constexpr int kMinNestedDissection = 20000;
 
 // The pivot order of a square matrix of size n whose entries are at the 1-based positions (rows[k], cols[k])
 // (repeats allowed): METIS_NodeND on the graph of A + A^T without its diagonal, as MUMPS's PERM_IN,
