@@ -8,7 +8,7 @@ OUT ?= results
 QUICK ?= 0
 FF := bin/ff
 
-.PHONY: all deps build test compare bench evidence sanitize fuzz fresh-check clean
+.PHONY: all deps build test compare bench evidence sanitize fuzz fresh-check clean supermesh-compare
 
 all: build
 
@@ -44,6 +44,11 @@ bench: deps build
 	  echo "DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) QUICK=$(QUICK) scripts/bench-mpi"; \
 	  DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) QUICK=$(QUICK) scripts/bench-mpi; \
 	else echo "note: no $(BUILD)/plugin/dlmfsi_mumps.so (libmumps-dev missing): scripts/bench-mpi skipped"; fi
+
+# dlmfsi against a driver on libsupermesh (not in Debian: built once from its sources, a clone of its GitHub
+# repository unless LIBSUPERMESH_SRC names a checkout), P1 x P1 mass at two sizes: $(OUT)/bench/supermesh.txt.
+supermesh-compare: deps build
+	DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) scripts/supermesh-compare
 
 # Accuracy against speed, the scenes' Pareto fronts and the stability map: CSV + PNG under
 # $(OUT)/evidence; then the falling disk's convergence study and the FSI-3 studies (hours of CPU), and the 3D
