@@ -12,6 +12,7 @@
 // The two run alternately (libsupermesh, dlmfsi, libsupermesh, ...) in one process; CPU seconds (one thread),
 // median and range of each. The matrices are compared in Frobenius norm (an independent check of both).
 //   supermesh_compare [fluid cells per side = 100] [solid cells per side = 235] [runs = 5]
+//   supermesh_compare 3d [fluid cells per side = 12] [solid cells per side = 12] [runs = 3]   (tetrahedra, below)
 // Build: libsupermesh is not packaged by Debian; build it from its sources (it needs gfortran, MPI and
 // libspatialindex-dev), then cmake -DLIBSUPERMESH_DIR=<its install prefix> and make supermesh_compare.
 #include <mpi.h>
@@ -21,10 +22,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <string>
 #include <vector>
 
 #include "../tests/core/support.hpp"
+#include "../tests/core/support3d.hpp"
 #include "coupling.hpp"
+#include "coupling3d.hpp"
 #include "field_map.hpp"
 #include "sparse.hpp"
 
@@ -36,13 +40,15 @@ void libsupermesh_tree_intersection_finder_set_input(long* nnodes_a, int* dim_a,
 void libsupermesh_tree_intersection_finder_query_output(long* nindices);
 void libsupermesh_tree_intersection_finder_get_output(long* nelements, long* nindices, long* indices, long* ind_ptr);
 void libsupermesh_intersect_tris_real(double* tri_a, double* tri_b, double* tris_c, int* n_tris_c);
+void libsupermesh_intersect_tets_real(double* tet_a, double* tet_b, double* tets_c, int* n_tets_c);
 }
 
 using namespace dlmfsi;
 
 namespace {
 
-constexpr int kTriangleBuffer = 22;  // libsupermesh-c.h's TRI_BUF_SIZE: sub-triangles of one pair at most
+constexpr int kTriangleBuffer = 22;     // libsupermesh-c.h's TRI_BUF_SIZE: sub-triangles of one pair at most
+constexpr int kTetrahedronBuffer = 81;  // TET_BUF_SIZE: sub-tetrahedra of one pair at most
 
 double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
@@ -166,10 +172,209 @@ double difference(const CsrMatrix& a, const CsrMatrix& b) {
   return std::sqrt(s);
 }
 
+
+// ---------------------------------------------------------------- three dimensions
+// The same on tetrahedra: a fluid box mesh of [0,2]^3 and a solid box mesh of [0.4,1.6]^3 (6 tetrahedra per cube,
+// box_mesh of tests/core/support3d.hpp) turned by `angle` about the axis (1,1,1) through (1,1,1).
+
+struct Affine3 {  // y -> the barycentric coordinates 1..3 of y in a tetrahedron (l0 = 1 - l1 - l2 - l3)
+  double o[3], inv[3][3];
+  explicit Affine3(const double* t) {  // 4 points, x, y, z side by side
+    double m[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) m[i][j] = t[3 * (j + 1) + i] - t[i];  // column j: p_{j+1} - p_0
+    const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                       m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        const int i1 = (j + 1) % 3, i2 = (j + 2) % 3, j1 = (i + 1) % 3, j2 = (i + 2) % 3;
+        inv[i][j] = (m[i1][j1] * m[i2][j2] - m[i1][j2] * m[i2][j1]) / det;  // the cofactor, transposed
+      }
+    for (int i = 0; i < 3; ++i) o[i] = t[i];
+  }
+  void operator()(const double* y, double l[4]) const {
+    const double d[3] = {y[0] - o[0], y[1] - o[1], y[2] - o[2]};
+    for (int i = 0; i < 3; ++i) l[i + 1] = inv[i][0] * d[0] + inv[i][1] * d[1] + inv[i][2] * d[2];
+    l[0] = 1 - l[1] - l[2] - l[3];
+  }
+};
+
+double tet_volume6(const double* c) {
+  const double a[3] = {c[3] - c[0], c[4] - c[1], c[5] - c[2]}, b[3] = {c[6] - c[0], c[7] - c[1], c[8] - c[2]},
+               e[3] = {c[9] - c[0], c[10] - c[1], c[11] - c[2]};
+  return a[0] * (b[1] * e[2] - b[2] * e[1]) - a[1] * (b[0] * e[2] - b[2] * e[0]) + a[2] * (b[0] * e[1] - b[1] * e[0]);
+}
+
+struct Flat3 {
+  std::vector<double> positions;
+  std::vector<long> elements;
+};
+
+Flat3 flat3(const Mesh3& mesh, const std::vector<Point3>& at) {
+  Flat3 f;
+  for (const Point3& p : at) {
+    f.positions.push_back(p.x);
+    f.positions.push_back(p.y);
+    f.positions.push_back(p.z);
+  }
+  for (const auto& t : mesh.tetrahedra)
+    for (int v : t) f.elements.push_back(v);
+  return f;
+}
+
+// P1 x P1 mass by libsupermesh on tetrahedra: each sub-tetrahedron by the 4-point rule of degree 2 (exact for
+// the product of two linear functions). volume: the sub-tetrahedra's total.
+const CsrMatrix& supermesh_mass3(const Mesh3& fluid, const Mesh3& solid, const std::vector<Point3>& image,
+                                 CsrBuilder& csr, SupermeshRun& run, double& volume, bool geometry_only = false) {
+  const double t0 = cpu_seconds();
+  Flat3 a = flat3(solid, image), b = flat3(fluid, fluid.vertices);
+  long na = static_cast<long>(image.size()), ea = solid.size(), nb = static_cast<long>(fluid.vertices.size()),
+       eb = fluid.size();
+  int dim = 3, loc = 4;
+  libsupermesh_tree_intersection_finder_set_input(&na, &dim, &ea, &loc, &nb, &dim, &eb, &loc, a.positions.data(),
+                                                  a.elements.data(), b.positions.data(), b.elements.data());
+  long nindices = 0;
+  libsupermesh_tree_intersection_finder_query_output(&nindices);
+  std::vector<long> indices(static_cast<size_t>(nindices)), ptr(static_cast<size_t>(ea) + 1);
+  libsupermesh_tree_intersection_finder_get_output(&ea, &nindices, indices.data(), ptr.data());
+  run.search += cpu_seconds() - t0;
+  std::vector<std::vector<Triplet>> parts(1);
+  std::vector<Triplet>& triplets = parts[0];
+  double ta[12], tb[12], tc[12 * kTetrahedronBuffer];
+  const double qa = 0.5854101966249685, qb = 0.1381966011250105;  // the 4-point rule's barycentric weights
+  volume = 0;
+  for (long e = 0; e < ea; ++e) {
+    for (int v = 0; v < 4; ++v)
+      for (int d = 0; d < 3; ++d) ta[3 * v + d] = a.positions[3 * a.elements[4 * e + v] + d];
+    const Affine3 in_a(ta);
+    for (long k = ptr[e]; k < ptr[e + 1]; ++k) {
+      const long f = indices[k];
+      for (int v = 0; v < 4; ++v)
+        for (int d = 0; d < 3; ++d) tb[3 * v + d] = b.positions[3 * b.elements[4 * f + v] + d];
+      int n = 0;
+      libsupermesh_intersect_tets_real(ta, tb, tc, &n);
+      ++run.pairs;
+      run.triangles += n;
+      if (geometry_only || n == 0) continue;
+      const Affine3 in_b(tb);
+      double block[4][4] = {};
+      for (int t = 0; t < n; ++t) {
+        const double* c = tc + 12 * t;
+        const double vol = std::fabs(tet_volume6(c)) / 6;
+        volume += vol;
+        for (int q = 0; q < 4; ++q) {
+          double y[3], la[4], lb[4];
+          for (int d = 0; d < 3; ++d) y[d] = qb * (c[d] + c[3 + d] + c[6 + d] + c[9 + d]) + (qa - qb) * c[3 * q + d];
+          in_a(y, la);
+          in_b(y, lb);
+          for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j) block[i][j] += vol / 4 * la[i] * lb[j];
+        }
+      }
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+          triplets.push_back({static_cast<int>(a.elements[4 * e + i]), static_cast<int>(b.elements[4 * f + j]),
+                              block[i][j]});
+    }
+  }
+  const CsrMatrix& m = csr.build(static_cast<int>(na), static_cast<int>(nb), parts);
+  run.total += cpu_seconds() - t0;
+  return m;
+}
+
+int compare3d(int nf, int ns, int runs) {
+  const Mesh3 fluid = test3d::box_mesh(nf, nf, nf, {0, 0, 0}, {2, 2, 2});
+  const Mesh3 solid = test3d::box_mesh(ns, ns, ns, {0.4, 0.4, 0.4}, {1.2, 1.2, 1.2});
+  const Point3 centre{1, 1, 1};
+  auto turned = [&](double angle, double r[3][3], Point3& shift) {
+    test3d::rotation({1, 1, 1}, angle, r);
+    shift = centre;
+    for (int i = 0; i < 3; ++i) (&shift.x)[i] -= r[i][0] * centre.x + r[i][1] * centre.y + r[i][2] * centre.z;
+  };
+  double r[3][3];
+  Point3 shift;
+  turned(0.3, r, shift);
+  std::vector<Point3> image(solid.vertices.size());
+  for (size_t v = 0; v < image.size(); ++v) {
+    const Point3 p = solid.vertices[v];
+    image[v] = Point3{r[0][0] * p.x + r[0][1] * p.y + r[0][2] * p.z, r[1][0] * p.x + r[1][1] * p.y + r[1][2] * p.z,
+                      r[2][0] * p.x + r[2][1] * p.y + r[2][2] * p.z} + shift;
+  }
+  CouplingOptions opt;
+  opt.c1 = 0;
+  opt.c2 = 1;
+  std::vector<double> t_lsm, t_geometry, t_dlm, t_next;
+  CsrMatrix last_lsm, last_dlm;
+  SupermeshRun counts;
+  double lsm_volume = 0;
+  long pieces = 0;
+  for (int run = 0; run < runs; ++run) {
+    {
+      CsrBuilder csr;
+      SupermeshRun sm;
+      const CsrMatrix& m = supermesh_mass3(fluid, solid, image, csr, sm, lsm_volume);
+      t_lsm.push_back(sm.total);
+      counts = sm;
+      if (run + 1 == runs) last_lsm = m;
+      SupermeshRun geometry;
+      double unused = 0;
+      supermesh_mass3(fluid, solid, image, csr, geometry, unused, true);
+      t_geometry.push_back(geometry.total);
+    }
+    {
+      const double t0 = cpu_seconds();
+      const test3d::P1Tet vf(fluid), vs(solid);
+      const FluidSide3 fluid_side(fluid, vf, {0});
+      const SolidSide3 solid_side(solid, vs, {0});
+      const test3d::AffineMap3 map(solid, r, shift);
+      CouplingAssembly3 assembly;
+      CouplingReport3 report;
+      const CsrMatrix& m = assembly.assemble(fluid_side, solid_side, map, opt, &report);
+      t_dlm.push_back(cpu_seconds() - t0);
+      pieces = report.pieces;
+      if (run + 1 == runs) last_dlm = m;
+      std::vector<double> next;
+      for (int call = 1; call < 5; ++call) {
+        double rc[3][3];
+        Point3 sc;
+        turned(0.3 + 0.01 * call, rc, sc);
+        const double t1 = cpu_seconds();
+        const test3d::AffineMap3 moved(solid, rc, sc);
+        assembly.assemble(fluid_side, solid_side, moved, opt, &report);
+        if (call >= 2) next.push_back(cpu_seconds() - t1);
+      }
+      t_next.push_back(median(next));
+    }
+    std::printf("run %d: libsupermesh driver %.4f s (search + intersect %.4f), dlmfsi %.4f s, next calls %.4f s\n",
+                run + 1, t_lsm.back(), t_geometry.back(), t_dlm.back(), t_next.back());
+  }
+  const double exact = 1.2 * 1.2 * 1.2;  // the box's volume (its vertices rounded to doubles move it by ~1e-16)
+  double dlm_sum = 0;
+  for (double v : last_dlm.value) dlm_sum += v;
+  std::printf("fluid %d solid %d tetrahedra, %d runs alternately, CPU s, median:\n", fluid.size(), solid.size(), runs);
+  std::printf("  libsupermesh driver %.4f: search + intersect %.4f; %ld candidate pairs, %ld sub-tetrahedra\n",
+              median(t_lsm), median(t_geometry), counts.pairs, counts.triangles);
+  std::printf("  dlmfsi exact, sides and first call %.4f; next calls %.4f; %ld pieces\n", median(t_dlm),
+              median(t_next), pieces);
+  std::printf("  ratio %.2f (driver / dlmfsi), %.2f (driver / dlmfsi's next calls)\n", median(t_lsm) / median(t_dlm),
+              median(t_lsm) / median(t_next));
+  std::printf("  volume: the box's 1.2^3 = %.15g; 1'B1 dlmfsi %.15g (relative %.1e), libsupermesh's sub-tetrahedra %.15g "
+              "(relative %.1e)\n", exact, dlm_sum, dlm_sum / exact - 1, lsm_volume, lsm_volume / exact - 1);
+  std::printf("  matrices: |B_dlmfsi - B_libsupermesh| / |B_dlmfsi| %.2e (Frobenius); nnz %zu / %zu\n",
+              difference(last_dlm, last_lsm) / frobenius(last_dlm), last_dlm.value.size(), last_lsm.value.size());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   MPI_Init(&argc, &argv);  // libsupermesh's Fortran modules are built with MPI
+  if (argc > 1 && std::string(argv[1]) == "3d") {
+    const int rc = compare3d(argc > 2 ? std::atoi(argv[2]) : 12, argc > 3 ? std::atoi(argv[3]) : 12,
+                             std::max(1, argc > 4 ? std::atoi(argv[4]) : 3));
+    MPI_Finalize();
+    return rc;
+  }
   const int nf = argc > 1 ? std::atoi(argv[1]) : 100;
   const int ns = argc > 2 ? std::atoi(argv[2]) : 235;
   const int runs = std::max(1, argc > 3 ? std::atoi(argv[3]) : 5);

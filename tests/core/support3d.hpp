@@ -73,10 +73,10 @@ inline std::string piece_shape(const Piece3& p, const Tet& a, const Tet& b, doub
   // near 1 / max |coordinate| (exact), so that nothing underflows or overflows at 1e-100 or 1e100.
   double m = 0;
   for (const Tet* t : {&a, &b})
-    for (Point3 p : *t) m = std::max({m, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+    for (Point3 c : *t) m = std::max({m, std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)});
   int e;
   std::frexp(m, &e);
-  auto down = [e](Point3 p) { return Point3{std::ldexp(p.x, -e), std::ldexp(p.y, -e), std::ldexp(p.z, -e)}; };
+  auto down = [e](Point3 c) { return Point3{std::ldexp(c.x, -e), std::ldexp(c.y, -e), std::ldexp(c.z, -e)}; };
   auto distance = [&](const Tet& t, int face, Point3 v) {
     Point3 u[4] = {down(t[0]), down(t[1]), down(t[2]), down(t[3])};
     const Point3 q = u[(face + 1) % 4], r = u[(face + 2) % 4], s = u[(face + 3) % 4];
