@@ -23,6 +23,7 @@
 #include <cstdlib>
 #include <ctime>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../tests/core/support.hpp"
@@ -58,9 +59,13 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-struct Flat {  // a mesh as libsupermesh reads it: (x, y) per vertex, 3 vertex indices (from 0) per triangle
+// A mesh as libsupermesh reads it: dim coordinates per vertex, loc vertex indices (from 0) per element.
+struct Flat {
+  int dim = 2, loc = 3;
   std::vector<double> positions;
   std::vector<long> elements;
+  long vertices() const { return static_cast<long>(positions.size()) / dim; }
+  long size() const { return static_cast<long>(elements.size()) / loc; }
 };
 
 Flat flat(const Mesh& mesh, const std::vector<Point>& at) {
@@ -74,6 +79,50 @@ Flat flat(const Mesh& mesh, const std::vector<Point>& at) {
   return f;
 }
 
+Flat flat(const Mesh3& mesh, const std::vector<Point3>& at) {
+  Flat f;
+  f.dim = 3;
+  f.loc = 4;
+  for (const Point3& p : at) {
+    f.positions.push_back(p.x);
+    f.positions.push_back(p.y);
+    f.positions.push_back(p.z);
+  }
+  for (const auto& t : mesh.tetrahedra)
+    for (int v : t) f.elements.push_back(v);
+  return f;
+}
+
+struct SupermeshRun {
+  double search = 0, total = 0;  // CPU seconds
+  long pairs = 0, triangles = 0;
+};
+
+// The solid's image (a) and the fluid (b) flattened, and libsupermesh's tree intersection finder: the
+// candidate elements of b for element e of a are indices[ptr[e] .. ptr[e + 1]). corners(flat, e, t) copies an
+// element's coordinates, vertex after vertex.
+struct Candidates {
+  double start;  // CPU seconds when the flattening began; the search's time is added to run.search
+  Flat a, b;
+  std::vector<long> indices, ptr;
+  Candidates(double t0, Flat image, Flat fluid, SupermeshRun& run) : start(t0), a(std::move(image)), b(std::move(fluid)) {
+    long na = a.vertices(), ea = a.size(), nb = b.vertices(), eb = b.size();
+    libsupermesh_tree_intersection_finder_set_input(&na, &a.dim, &ea, &a.loc, &nb, &b.dim, &eb, &b.loc,
+                                                    a.positions.data(), a.elements.data(), b.positions.data(),
+                                                    b.elements.data());
+    long nindices = 0;
+    libsupermesh_tree_intersection_finder_query_output(&nindices);
+    indices.resize(static_cast<size_t>(nindices));
+    ptr.resize(static_cast<size_t>(ea) + 1);
+    libsupermesh_tree_intersection_finder_get_output(&ea, &nindices, indices.data(), ptr.data());
+    run.search += cpu_seconds() - start;
+  }
+  static void corners(const Flat& f, long e, double* t) {
+    for (int v = 0; v < f.loc; ++v)
+      for (int d = 0; d < f.dim; ++d) t[f.dim * v + d] = f.positions[f.dim * f.elements[f.loc * e + v] + d];
+  }
+};
+
 // Barycentric coordinates of y in the triangle t (3 points, x and y side by side).
 void barycentric(const double* t, double x, double y, double l[3]) {
   const double det = (t[2] - t[0]) * (t[5] - t[1]) - (t[4] - t[0]) * (t[3] - t[1]);
@@ -82,42 +131,36 @@ void barycentric(const double* t, double x, double y, double l[3]) {
   l[0] = 1 - l[1] - l[2];
 }
 
-struct SupermeshRun {
-  double search = 0, total = 0;  // CPU seconds
-  long pairs = 0, triangles = 0;
-};
+// The local block of solid element e against fluid element f as triplets (rows: a's vertices, columns: b's).
+template <int L>
+void add_block(const double (&block)[L][L], const Flat& a, long e, const Flat& b, long f, std::vector<Triplet>& out) {
+  for (int i = 0; i < L; ++i)
+    for (int j = 0; j < L; ++j)
+      out.push_back({static_cast<int>(a.elements[L * e + i]), static_cast<int>(b.elements[L * f + j]), block[i][j]});
+}
+
+// The triplets compressed (duplicates summed), and the run's total time since the search began.
+const CsrMatrix& compressed(CsrBuilder& csr, const Candidates& found, const std::vector<std::vector<Triplet>>& parts,
+                            SupermeshRun& run) {
+  const CsrMatrix& m = csr.build(static_cast<int>(found.a.vertices()), static_cast<int>(found.b.vertices()), parts);
+  run.total += cpu_seconds() - found.start;
+  return m;
+}
 
 // B(i, j) = int over the solid's image of psi_i phi_j (the map is a rotation: the same integral on the solid's
 // reference triangles), rows the solid's vertices, columns the fluid's.
 // geometry_only: the search and the intersections alone (nothing integrated; the matrix is empty).
 const CsrMatrix& supermesh_mass(const Mesh& fluid, const Mesh& solid, const std::vector<Point>& image, CsrBuilder& csr,
                                 SupermeshRun& run, bool geometry_only = false) {
-  const double t0 = cpu_seconds();
-  Flat a = flat(solid, image), b = flat(fluid, fluid.vertices);
-  long na = static_cast<long>(image.size()), ea = solid.size(), nb = static_cast<long>(fluid.vertices.size()),
-       eb = fluid.size();
-  int dim = 2, loc = 3;
-  libsupermesh_tree_intersection_finder_set_input(&na, &dim, &ea, &loc, &nb, &dim, &eb, &loc, a.positions.data(),
-                                                  a.elements.data(), b.positions.data(), b.elements.data());
-  long nindices = 0;
-  libsupermesh_tree_intersection_finder_query_output(&nindices);
-  std::vector<long> indices(static_cast<size_t>(nindices)), ptr(static_cast<size_t>(ea) + 1);
-  libsupermesh_tree_intersection_finder_get_output(&ea, &nindices, indices.data(), ptr.data());
-  run.search += cpu_seconds() - t0;
+  const Candidates found(cpu_seconds(), flat(solid, image), flat(fluid, fluid.vertices), run);
+  const Flat &a = found.a, &b = found.b;
   std::vector<std::vector<Triplet>> parts(1);
-  std::vector<Triplet>& triplets = parts[0];
   double ta[6], tb[6], tc[6 * kTriangleBuffer];
-  for (long e = 0; e < ea; ++e) {
-    for (int v = 0; v < 3; ++v) {
-      ta[2 * v] = a.positions[2 * a.elements[3 * e + v]];
-      ta[2 * v + 1] = a.positions[2 * a.elements[3 * e + v] + 1];
-    }
-    for (long k = ptr[e]; k < ptr[e + 1]; ++k) {
-      const long f = indices[k];
-      for (int v = 0; v < 3; ++v) {
-        tb[2 * v] = b.positions[2 * b.elements[3 * f + v]];
-        tb[2 * v + 1] = b.positions[2 * b.elements[3 * f + v] + 1];
-      }
+  for (long e = 0; e < a.size(); ++e) {
+    Candidates::corners(a, e, ta);
+    for (long k = found.ptr[e]; k < found.ptr[e + 1]; ++k) {
+      const long f = found.indices[k];
+      Candidates::corners(b, f, tb);
       int n = 0;
       libsupermesh_intersect_tris_real(ta, tb, tc, &n);
       ++run.pairs;
@@ -141,15 +184,10 @@ const CsrMatrix& supermesh_mass(const Mesh& fluid, const Mesh& solid, const std:
             for (int j = 0; j < 3; ++j) block[i][j] += area / 3 * la[i] * lb[j];
         }
       }
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-          triplets.push_back({static_cast<int>(a.elements[3 * e + i]), static_cast<int>(b.elements[3 * f + j]),
-                              block[i][j]});
+      add_block(block, a, e, b, f, parts[0]);
     }
   }
-  const CsrMatrix& m = csr.build(static_cast<int>(na), static_cast<int>(nb), parts);
-  run.total += cpu_seconds() - t0;
-  return m;
+  return compressed(csr, found, parts, run);
 }
 
 double frobenius(const CsrMatrix& m) {
@@ -205,52 +243,22 @@ double tet_volume6(const double* c) {
   return a[0] * (b[1] * e[2] - b[2] * e[1]) - a[1] * (b[0] * e[2] - b[2] * e[0]) + a[2] * (b[0] * e[1] - b[1] * e[0]);
 }
 
-struct Flat3 {
-  std::vector<double> positions;
-  std::vector<long> elements;
-};
-
-Flat3 flat3(const Mesh3& mesh, const std::vector<Point3>& at) {
-  Flat3 f;
-  for (const Point3& p : at) {
-    f.positions.push_back(p.x);
-    f.positions.push_back(p.y);
-    f.positions.push_back(p.z);
-  }
-  for (const auto& t : mesh.tetrahedra)
-    for (int v : t) f.elements.push_back(v);
-  return f;
-}
-
 // P1 x P1 mass by libsupermesh on tetrahedra: each sub-tetrahedron by the 4-point rule of degree 2 (exact for
 // the product of two linear functions). volume: the sub-tetrahedra's total.
 const CsrMatrix& supermesh_mass3(const Mesh3& fluid, const Mesh3& solid, const std::vector<Point3>& image,
                                  CsrBuilder& csr, SupermeshRun& run, double& volume, bool geometry_only = false) {
-  const double t0 = cpu_seconds();
-  Flat3 a = flat3(solid, image), b = flat3(fluid, fluid.vertices);
-  long na = static_cast<long>(image.size()), ea = solid.size(), nb = static_cast<long>(fluid.vertices.size()),
-       eb = fluid.size();
-  int dim = 3, loc = 4;
-  libsupermesh_tree_intersection_finder_set_input(&na, &dim, &ea, &loc, &nb, &dim, &eb, &loc, a.positions.data(),
-                                                  a.elements.data(), b.positions.data(), b.elements.data());
-  long nindices = 0;
-  libsupermesh_tree_intersection_finder_query_output(&nindices);
-  std::vector<long> indices(static_cast<size_t>(nindices)), ptr(static_cast<size_t>(ea) + 1);
-  libsupermesh_tree_intersection_finder_get_output(&ea, &nindices, indices.data(), ptr.data());
-  run.search += cpu_seconds() - t0;
+  const Candidates found(cpu_seconds(), flat(solid, image), flat(fluid, fluid.vertices), run);
+  const Flat &a = found.a, &b = found.b;
   std::vector<std::vector<Triplet>> parts(1);
-  std::vector<Triplet>& triplets = parts[0];
   double ta[12], tb[12], tc[12 * kTetrahedronBuffer];
   const double qa = 0.5854101966249685, qb = 0.1381966011250105;  // the 4-point rule's barycentric weights
   volume = 0;
-  for (long e = 0; e < ea; ++e) {
-    for (int v = 0; v < 4; ++v)
-      for (int d = 0; d < 3; ++d) ta[3 * v + d] = a.positions[3 * a.elements[4 * e + v] + d];
+  for (long e = 0; e < a.size(); ++e) {
+    Candidates::corners(a, e, ta);
     const Affine3 in_a(ta);
-    for (long k = ptr[e]; k < ptr[e + 1]; ++k) {
-      const long f = indices[k];
-      for (int v = 0; v < 4; ++v)
-        for (int d = 0; d < 3; ++d) tb[3 * v + d] = b.positions[3 * b.elements[4 * f + v] + d];
+    for (long k = found.ptr[e]; k < found.ptr[e + 1]; ++k) {
+      const long f = found.indices[k];
+      Candidates::corners(b, f, tb);
       int n = 0;
       libsupermesh_intersect_tets_real(ta, tb, tc, &n);
       ++run.pairs;
@@ -271,15 +279,10 @@ const CsrMatrix& supermesh_mass3(const Mesh3& fluid, const Mesh3& solid, const s
             for (int j = 0; j < 4; ++j) block[i][j] += vol / 4 * la[i] * lb[j];
         }
       }
-      for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j)
-          triplets.push_back({static_cast<int>(a.elements[4 * e + i]), static_cast<int>(b.elements[4 * f + j]),
-                              block[i][j]});
+      add_block(block, a, e, b, f, parts[0]);
     }
   }
-  const CsrMatrix& m = csr.build(static_cast<int>(na), static_cast<int>(nb), parts);
-  run.total += cpu_seconds() - t0;
-  return m;
+  return compressed(csr, found, parts, run);
 }
 
 int compare3d(int nf, int ns, int runs) {
