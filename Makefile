@@ -46,7 +46,8 @@ bench: deps build
 	else echo "note: no $(BUILD)/plugin/dlmfsi_mumps.so (libmumps-dev missing): scripts/bench-mpi skipped"; fi
 
 # dlmfsi against a driver on libsupermesh (not in Debian: built once from its sources, a clone of its GitHub
-# repository unless LIBSUPERMESH_SRC names a checkout), P1 x P1 mass at two sizes: $(OUT)/bench/supermesh.txt.
+# repository unless LIBSUPERMESH_SRC names a checkout), P1 x P1 mass at two sizes in 2D and two in 3D:
+# $(OUT)/bench/supermesh.txt.
 supermesh-compare: deps build
 	DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) scripts/supermesh-compare
 
