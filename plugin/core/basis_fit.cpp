@@ -35,7 +35,8 @@ void BasisFit::fit_elements(int elements) {
 
 void BasisFit::fit(int k, double* c) {
   fit_on_lattice(basis_, k, functions_, nm_, vandermonde_inverse(degree_),
-                 [this](int q) { return lattice_point(degree_, q); }, sample_.data(), c);
+                 [this](int q) { return lattice_point(degree_, q); },
+                 [this](Point xi, double* v) { monomial_values(degree_, xi, v); }, sample_.data(), c);
 }
 
 void BasisFit::check(int k) {

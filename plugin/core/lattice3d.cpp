@@ -39,6 +39,21 @@ int monomial_index3(int a, int b, int c) {
 
 }  // namespace
 
+const std::vector<MonomialParent3>& monomial_parents3() {
+  static const auto table = [] {
+    std::vector<MonomialParent3> all(monomial_count3(kMaxLatticeDegree), MonomialParent3{-1, -1});
+    for (int m = 4; m < monomial_count3(kMaxLatticeDegree); ++m) {
+      int a, b, c;
+      monomial_exponents3(m, a, b, c);
+      all[m] = a > 0 ? MonomialParent3{monomial_index3(a - 1, b, c), 0}
+               : b > 0 ? MonomialParent3{monomial_index3(a, b - 1, c), 1}
+                       : MonomialParent3{monomial_index3(a, b, c - 1), 2};
+    }
+    return all;
+  }();
+  return table;
+}
+
 const std::vector<MonomialDerivative3>& monomial_derivatives3(int d) {
   static const auto table = [] {
     std::vector<std::vector<MonomialDerivative3>> all(kMaxLatticeDegree + 1);

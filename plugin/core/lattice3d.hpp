@@ -29,6 +29,13 @@ struct MonomialDerivative3 {
 };
 const std::vector<MonomialDerivative3>& monomial_derivatives3(int d);
 
+// Monomial m >= 4 (degree >= 2) is monomial parent times xi_(axis + 1): xi1 when its exponent of xi1 is
+// positive, else xi2 when that one is, else xi3 (a prefix of the list serves every degree).
+struct MonomialParent3 {
+  int parent, axis;
+};
+const std::vector<MonomialParent3>& monomial_parents3();
+
 // Values of all monomials of degree <= d at xi.
 inline void monomial_values3(int d, Point3 xi, double* value) {
   double p1[kMaxLatticeDegree + 1], p2[kMaxLatticeDegree + 1], p3[kMaxLatticeDegree + 1];

@@ -26,8 +26,9 @@ void evaluate_fitted(const BasisFit& fit, int k, const double* j, const Point* x
   const double* coef = fit.coefficients(k);
   const double* deriv = fit.derivative_coefficients(k);
   const bool shared = fit.shared(k);
-  thread_local std::vector<double> scratch;
+  thread_local std::vector<double> scratch, reference;
   if (scratch.size() < static_cast<size_t>(nm) * n) scratch.resize(static_cast<size_t>(nm) * n);
+  if (dx && reference.size() < 2 * static_cast<size_t>(n)) reference.resize(2 * static_cast<size_t>(n));
   double* mono = scratch.data();
   for (int p = 0; p < n; ++p) {
     double v[monomial_count(kMaxLatticeDegree)];
@@ -38,16 +39,19 @@ void evaluate_fitted(const BasisFit& fit, int k, const double* j, const Point* x
     if (shared && fit.twin(static_cast<int>(f)) >= 0) continue;
     sum_monomials(coef + f * nm, nm, mono, n, value + f * n);
     if (!dx) continue;
+    // the reference derivatives along the points, then the physical ones through j = d xi / d x
     const double *e1 = deriv + f * 2 * nm1, *e2 = e1 + nm1;
+    double *g1 = reference.data(), *g2 = g1 + n;
+    if (nm1 == 0) {  // degree 0
+      std::fill(g1, g1 + 2 * n, 0.0);
+    } else {
+      sum_monomials(e1, nm1, mono, n, g1);
+      sum_monomials(e2, nm1, mono, n, g2);
+    }
     double *gx = dx + f * n, *gy = dy + f * n;
     for (int p = 0; p < n; ++p) {
-      double g1 = 0, g2 = 0;
-      for (int m = 0; m < nm1; ++m) {
-        g1 += e1[m] * mono[static_cast<size_t>(m) * n + p];
-        g2 += e2[m] * mono[static_cast<size_t>(m) * n + p];
-      }
-      gx[p] = g1 * j[0] + g2 * j[2];
-      gy[p] = g1 * j[1] + g2 * j[3];
+      gx[p] = g1[p] * j[0] + g2[p] * j[2];
+      gy[p] = g1[p] * j[1] + g2[p] * j[3];
     }
   }
   // the twins' rows: copies of the rows they repeat

@@ -37,12 +37,14 @@ PolynomialBasis3::PolynomialBasis3(const Basis3& basis, const Mesh3& mesh, int d
     return;
   }
   twin_ = twin_functions(reference_, nm_);
+  terms_.set(degree_, reference_.data(), functions_.size());
   for (int k = 1; k < mesh.size(); ++k) check(k);
 }
 
 void PolynomialBasis3::fit(int k, double* c) {
   fit_on_lattice(basis_, k, functions_, nm_, vandermonde_inverse3(degree_),
-                 [this](int q) { return lattice_point3(degree_, q); }, sample_.data(), c);
+                 [this](int q) { return lattice_point3(degree_, q); },
+                 [this](Point3 xi, double* v) { monomial_values3(degree_, xi, v); }, sample_.data(), c);
 }
 
 void PolynomialBasis3::check(int k) {
@@ -57,9 +59,12 @@ void PolynomialBasis3::check(int k) {
 }
 
 void PolynomialBasis3::evaluate_points(int k, const Point3* xi, int n, double* value, double* gradient) const {
-  const bool twins = shared(k) && !twin_.empty();
-  evaluate_polynomials3(degree_, coefficients(k), functions_.size(), twins ? twin_.data() : nullptr,
-                        inverse_jacobian(k), xi, n, value, gradient);
+  if (shared(k) && !terms_.empty()) {
+    terms_.evaluate(twin_.empty() ? nullptr : twin_.data(), inverse_jacobian(k), xi, n, value, gradient);
+    return;
+  }
+  evaluate_polynomials3(degree_, coefficients(k), functions_.size(), nullptr, inverse_jacobian(k), xi, n, value,
+                        gradient);
 }
 
 void PolynomialBasis3::evaluate(int k, Point3 xi, double* out) const {

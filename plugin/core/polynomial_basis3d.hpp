@@ -10,6 +10,7 @@
 #include "basis.hpp"
 #include "lattice3d.hpp"
 #include "mesh3d.hpp"
+#include "polynomial_values3d.hpp"
 #include "tet_frames3d.hpp"
 
 namespace dlmfsi {
@@ -58,6 +59,7 @@ class PolynomialBasis3 {
   int degree_, nm_ = 0, nc_;
   std::vector<int> functions_;
   std::vector<double> reference_;  // the shared fit
+  PolynomialTerms3 terms_;         // the shared fit's non-zero terms (empty until it is confirmed)
   std::vector<int> twin_;          // per function: an earlier function with the same shared fit, or -1
   std::vector<int> slot_;          // per element: -1 shared fit, else offset in own_
   std::vector<double> own_;        // element fits that differ from the shared one

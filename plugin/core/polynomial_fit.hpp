@@ -28,32 +28,67 @@ std::vector<int> listed_functions(const BasisOf<D>& basis, const std::vector<int
 }
 
 // The monomial coefficients c[f * nm + m] of the functions on element k: interpolation at the nm lattice
-// points lattice(q), c = V^-1 values with inverse = V^-1 (row-major) the lattice's Vandermonde inverse.
-// sample: room for BasisOf::values.
-template <int D, class Lattice>
+// points lattice(q), c = V^-1 values with inverse = V^-1 (row-major) the lattice's Vandermonde inverse;
+// monomials(xi, v) writes the nm monomials at xi (V's rows). sample: room for BasisOf::values.
+//
+// The zeros a function's exact polynomial has (the monomials it lacks: P1b's linear functions have 4 of
+// P1b3d's 35) come out as round-off, of the order of u |V^-1 row| max|values|. They are set to exactly zero,
+// so that the evaluations skip them (sum_monomials, PolynomialTerms3), when two conditions hold: each is
+// below 16 u |V^-1 row m|_1 max|values| (the values' own round-off, a few ulps of the function's size,
+// carried by row m), and the fit without them reproduces the lattice values at least as closely as the raw
+// fit, up to a factor 2 and 4 ulps (max_q |V c - values|): the interpolant moves by less than its round-off.
+template <int D, class Lattice, class Monomials>
 void fit_on_lattice(const BasisOf<D>& basis, int k, const std::vector<int>& functions, int nm,
-                    const std::vector<double>& inverse, Lattice lattice, double* sample, double* c) {
+                    const std::vector<double>& inverse, Lattice lattice, Monomials monomials, double* sample,
+                    double* c) {
   constexpr int kSlots = BasisOf<D>::kSlots;
-  const std::size_t width = functions.size();
-  std::vector<double> values(static_cast<std::size_t>(nm) * width);
+  constexpr double u = 0x1p-53;
+  const std::size_t width = functions.size(), count = static_cast<std::size_t>(nm);
+  std::vector<double> values(count * width), vandermonde(count * count), row_size(count, 0.0);
   for (int q = 0; q < nm; ++q) {
     basis.values(k, lattice(q), sample);
     for (std::size_t f = 0; f < width; ++f) values[q * width + f] = sample[functions[f] * kSlots];
+    monomials(lattice(q), &vandermonde[q * count]);
   }
-  for (std::size_t f = 0; f < width; ++f)
-    for (int m = 0; m < nm; ++m) {
-      double s = 0;
-      for (int q = 0; q < nm; ++q) s += inverse[static_cast<std::size_t>(m) * nm + q] * values[q * width + f];
-      c[f * nm + m] = s;
+  for (std::size_t m = 0; m < count; ++m)
+    for (std::size_t q = 0; q < count; ++q) row_size[m] += std::fabs(inverse[m * count + q]);
+  std::vector<double> snapped(count);
+  // max_q |V a - values of f|
+  auto residual = [&](const double* a, std::size_t f) {
+    double worst = 0;
+    for (std::size_t q = 0; q < count; ++q) {
+      double s = -values[q * width + f];
+      for (std::size_t m = 0; m < count; ++m) s += vandermonde[q * count + m] * a[m];
+      worst = std::max(worst, std::fabs(s));
     }
+    return worst;
+  };
+  for (std::size_t f = 0; f < width; ++f) {
+    double* cf = c + f * count;
+    double size = 0;
+    for (std::size_t q = 0; q < count; ++q) size = std::max(size, std::fabs(values[q * width + f]));
+    bool any = false;
+    for (std::size_t m = 0; m < count; ++m) {
+      double s = 0;
+      for (std::size_t q = 0; q < count; ++q) s += inverse[m * count + q] * values[q * width + f];
+      cf[m] = s;
+      const bool zero = s != 0 && std::fabs(s) <= 16 * u * row_size[m] * size;
+      snapped[m] = zero ? 0.0 : s;
+      any = any || zero;
+    }
+    if (any && residual(snapped.data(), f) <= 2 * residual(cf, f) + 4 * u * size)
+      std::copy(snapped.begin(), snapped.end(), cf);
+  }
 }
 
 // out[p] = sum_m c[m] mono[m * n + p], p < n: a fitted function at n points whose monomial values are
-// stored monomial by monomial (monomial 0 is 1), summed in the order of the monomials.
+// stored monomial by monomial (monomial 0 is 1), summed in the order of the monomials. Zero coefficients
+// are skipped (the monomials a sparse basis such as P1b's does not have): the same sums.
 inline void sum_monomials(const double* c, int nm, const double* mono, int n, double* out) {
   for (int p = 0; p < n; ++p) out[p] = c[0];
   for (int m = 1; m < nm; ++m) {
     const double cm = c[m];
+    if (cm == 0) continue;
     const double* row = mono + static_cast<std::size_t>(m) * n;
     for (int p = 0; p < n; ++p) out[p] += cm * row[p];
   }

@@ -4,58 +4,123 @@
 #include <vector>
 
 #include "lattice3d.hpp"
-#include "polynomial_fit.hpp"
 
 namespace dlmfsi {
 
-void evaluate_polynomials3(int degree, const double* coef, size_t width, const int* twin, const double* j,
-                           const Point3* xi, int n, double* value, double* gradient) {
+void PolynomialTerms3::set(int degree, const double* coef, std::size_t width) {
+  degree_ = degree;
+  width_ = width;
   const int nm = monomial_count3(degree);
   const auto& derivative = monomial_derivatives3(degree);
   const int nm1 = degree > 0 ? monomial_count3(degree - 1) : 0;
-  // Monomial-major: mono[m * n + p] is monomial m at point p, so that each function's sums run along the
-  // points.
-  thread_local std::vector<double> scratch, ref;
-  if (scratch.size() < static_cast<size_t>(nm) * n) scratch.resize(static_cast<size_t>(nm) * n);
-  double* mono = scratch.data();
-  for (int p = 0; p < n; ++p) {
-    double v[monomial_count3(kMaxLatticeDegree)];
-    monomial_values3(degree, xi[p], v);
-    for (int m = 0; m < nm; ++m) mono[static_cast<size_t>(m) * n + p] = v[m];
-  }
-  if (gradient && ref.size() < 3 * static_cast<size_t>(nm1 > 0 ? nm1 : 1))
-    ref.resize(3 * static_cast<size_t>(nm1 > 0 ? nm1 : 1));
-  for (size_t f = 0; f < width; ++f) {
-    if (twin && twin[f] >= 0) continue;  // copied below
+  constant_.assign(4 * width, 0.0);
+  start_.assign(1, 0);
+  monomial_.clear();
+  coefficient_.clear();
+  std::vector<double> e(3 * static_cast<std::size_t>(std::max(nm1, 1)));
+  auto add_polynomial = [&](std::size_t slot, const double* c, int count) {
+    constant_[slot] = c[0];
+    for (int m = 1; m < count; ++m)
+      if (c[m] != 0) {
+        monomial_.push_back(m);
+        coefficient_.push_back(c[m]);
+      }
+    start_.push_back(static_cast<int>(monomial_.size()));
+  };
+  for (std::size_t f = 0; f < width; ++f) {
     const double* c = coef + f * nm;
-    sum_monomials(c, nm, mono, n, value + f * n);
-    if (!gradient) continue;
-    // the reference derivatives' coefficients on the degree - 1 monomials
-    double* e = ref.data();
-    std::fill(e, e + 3 * nm1, 0.0);
+    add_polynomial(4 * f, c, nm);
+    // d/dxi_i of monomial m is factor * (monomial index) of degree - 1: one term each
+    std::fill(e.begin(), e.end(), 0.0);
     for (int m = 1; m < nm; ++m)
       for (int i = 0; i < 3; ++i)
-        if (derivative[m].index[i] >= 0) e[i * nm1 + derivative[m].index[i]] += derivative[m].factor[i] * c[m];
-    double* g[3] = {gradient + (3 * f) * n, gradient + (3 * f + 1) * n, gradient + (3 * f + 2) * n};
-    for (int p = 0; p < n; ++p) {
-      double r[3] = {0, 0, 0};
-      for (int m = 0; m < nm1; ++m) {
-        const double mp = mono[static_cast<size_t>(m) * n + p];
-        r[0] += e[m] * mp;
-        r[1] += e[nm1 + m] * mp;
-        r[2] += e[2 * nm1 + m] * mp;
+        if (derivative[m].index[i] >= 0) e[i * nm1 + derivative[m].index[i]] = derivative[m].factor[i] * c[m];
+    for (int i = 0; i < 3; ++i) {
+      if (nm1 == 0) {
+        start_.push_back(static_cast<int>(monomial_.size()));
+        continue;
       }
-      // d phi / d x_j = sum_i d phi / d xi_i  d xi_i / d x_j
-      for (int a = 0; a < 3; ++a) g[a][p] = r[0] * j[a] + r[1] * j[3 + a] + r[2] * j[6 + a];
+      add_polynomial(4 * f + 1 + i, &e[i * nm1], nm1);
+    }
+  }
+}
+
+namespace {
+
+// mono[m * n + p] = monomial m at xi[p], row by row: monomial 0 is 1, the degree-1 rows the coordinates,
+// and each further one a row before it times one coordinate (monomial_parents3), so that every row is one
+// product along the points.
+void monomial_rows3(int degree, const Point3* xi, int n, double* mono) {
+  const int nm = monomial_count3(degree);
+  for (int p = 0; p < n; ++p) mono[p] = 1;
+  if (degree == 0) return;
+  double* x[3] = {mono + n, mono + 2 * static_cast<std::size_t>(n), mono + 3 * static_cast<std::size_t>(n)};
+  for (int p = 0; p < n; ++p) {
+    x[0][p] = xi[p].x;
+    x[1][p] = xi[p].y;
+    x[2][p] = xi[p].z;
+  }
+  const auto& parents = monomial_parents3();
+  for (int m = 4; m < nm; ++m) {
+    const double* from = mono + static_cast<std::size_t>(parents[m].parent) * n;
+    const double* factor = x[parents[m].axis];
+    double* to = mono + static_cast<std::size_t>(m) * n;
+    for (int p = 0; p < n; ++p) to[p] = from[p] * factor[p];
+  }
+}
+
+// out[p] = constant + sum over the terms of coefficient * mono[monomial * n + p], term by term.
+inline void sum_terms(double constant, const int* monomial, const double* coefficient, int terms, const double* mono,
+                      int n, double* out) {
+  for (int p = 0; p < n; ++p) out[p] = constant;
+  for (int t = 0; t < terms; ++t) {
+    const double cm = coefficient[t];
+    const double* row = mono + static_cast<std::size_t>(monomial[t]) * n;
+    for (int p = 0; p < n; ++p) out[p] += cm * row[p];
+  }
+}
+
+}  // namespace
+
+void PolynomialTerms3::evaluate(const int* twin, const double* j, const Point3* xi, int n, double* value,
+                                double* gradient) const {
+  const int nm = monomial_count3(degree_);
+  // Monomial-major: mono[m * n + p] is monomial m at point p, so that each sum runs along the points.
+  thread_local std::vector<double> scratch, reference;
+  if (scratch.size() < static_cast<std::size_t>(nm) * n) scratch.resize(static_cast<std::size_t>(nm) * n);
+  if (gradient && reference.size() < 3 * static_cast<std::size_t>(n)) reference.resize(3 * static_cast<std::size_t>(n));
+  double* mono = scratch.data();
+  monomial_rows3(degree_, xi, n, mono);
+  auto sum = [&](std::size_t slot, double* out) {
+    const int s = start_[slot], e = start_[slot + 1];
+    sum_terms(constant_[slot], monomial_.data() + s, coefficient_.data() + s, e - s, mono, n, out);
+  };
+  for (std::size_t f = 0; f < width_; ++f) {
+    if (twin && twin[f] >= 0) continue;  // copied below
+    sum(4 * f, value + f * n);
+    if (!gradient) continue;
+    double* r[3] = {reference.data(), reference.data() + n, reference.data() + 2 * n};
+    for (int i = 0; i < 3; ++i) sum(4 * f + 1 + i, r[i]);
+    // d phi / d x_a = sum_i d phi / d xi_i  d xi_i / d x_a
+    for (int a = 0; a < 3; ++a) {
+      double* g = gradient + (3 * f + a) * n;
+      for (int p = 0; p < n; ++p) g[p] = r[0][p] * j[a] + r[1][p] * j[3 + a] + r[2][p] * j[6 + a];
     }
   }
   if (!twin) return;
-  for (size_t f = 0; f < width; ++f) {
+  for (std::size_t f = 0; f < width_; ++f) {
     const int t = twin[f];
     if (t < 0) continue;
     std::copy(value + t * n, value + (t + 1) * n, value + f * n);
     if (gradient) std::copy(gradient + 3 * t * n, gradient + 3 * (t + 1) * n, gradient + 3 * f * n);
   }
+}
+
+void evaluate_polynomials3(int degree, const double* coef, std::size_t width, const int* twin, const double* j,
+                           const Point3* xi, int n, double* value, double* gradient) {
+  thread_local PolynomialTerms3 terms;
+  terms.set(degree, coef, width);
+  terms.evaluate(twin, j, xi, n, value, gradient);
 }
 
 }  // namespace dlmfsi

@@ -1,0 +1,142 @@
+// Bases as polynomials: the lattice fit's zeros (polynomial_fit.hpp: a basis fitted at a degree above its
+// own gets exact zeros for the monomials it does not have, and still evaluates the basis), in 2D and 3D;
+// and the 3D bases' inner loop (polynomial_values3d.hpp): polynomials of every lattice degree, sparse and
+// dense, with twins, evaluated with their physical gradients, against sums of c x^a y^b z^c written from
+// the exponents in long double.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "basis_fit.hpp"
+#include "lattice3d.hpp"
+#include "polynomial_basis3d.hpp"
+#include "polynomial_values3d.hpp"
+#include "support.hpp"
+#include "support3d.hpp"
+
+using namespace dlmfsi;
+
+namespace {
+
+long double power(long double x, int e) { return e == 0 ? 1.0L : std::pow(x, e); }
+
+// Value and reference derivatives of sum_m c[m] xi^(exponents of m), term by term.
+void reference_sums(int degree, const double* c, Point3 xi, long double out[4]) {
+  std::fill(out, out + 4, 0.0L);
+  for (int m = 0; m < monomial_count3(degree); ++m) {
+    int e[3];
+    monomial_exponents3(m, e[0], e[1], e[2]);
+    const long double x[3] = {xi.x, xi.y, xi.z};
+    out[0] += c[m] * power(x[0], e[0]) * power(x[1], e[1]) * power(x[2], e[2]);
+    for (int i = 0; i < 3; ++i) {
+      if (e[i] == 0) continue;
+      int f[3] = {e[0], e[1], e[2]};
+      --f[i];
+      out[1 + i] += c[m] * e[i] * power(x[0], f[0]) * power(x[1], f[1]) * power(x[2], f[2]);
+    }
+  }
+}
+
+}  // namespace
+
+TEST(PolynomialValues3d, SparseAndDensePolynomialsOfEveryDegreeWithTheirGradients) {
+  std::mt19937 gen(7);
+  std::uniform_real_distribution<double> u(-1, 1), pick(0, 1);
+  double worst = 0;
+  for (int degree = 0; degree <= kMaxLatticeDegree; ++degree) {
+    const int nm = monomial_count3(degree), width = 5, n = 13;
+    // functions 0, 1, 2 with none, half and most of their coefficients zero; 3 a twin of 1; 4 all zero
+    std::vector<double> c(static_cast<size_t>(width) * nm, 0.0);
+    const double keep[3] = {1.0, 0.5, 0.15};
+    for (int f = 0; f < 3; ++f)
+      for (int m = 0; m < nm; ++m)
+        if (pick(gen) < keep[f]) c[f * nm + m] = u(gen);
+    std::copy(&c[nm], &c[2 * nm], &c[3 * nm]);
+    const int twin[width] = {-1, -1, -1, 1, -1};
+    const double j[9] = {1.5, 0.2, -0.3, 0.1, -2.0, 0.4, 0.7, 0.3, 0.9};  // d xi / d x, row-major
+    std::vector<Point3> xi(n);
+    for (auto& p : xi) p = {pick(gen), pick(gen), pick(gen)};
+    for (bool with_twins : {false, true}) {
+      std::vector<double> value(static_cast<size_t>(width) * n), gradient(3 * value.size());
+      PolynomialTerms3 terms(degree, c.data(), width);
+      terms.evaluate(with_twins ? twin : nullptr, j, xi.data(), n, value.data(), gradient.data());
+      std::vector<double> once(value.size()), once_gradient(gradient.size());
+      evaluate_polynomials3(degree, c.data(), width, with_twins ? twin : nullptr, j, xi.data(), n, once.data(),
+                            once_gradient.data());
+      EXPECT_EQ(value, once);
+      EXPECT_EQ(gradient, once_gradient);
+      for (int f = 0; f < width; ++f)
+        for (int p = 0; p < n; ++p) {
+          long double r[4];
+          reference_sums(degree, &c[f * nm], xi[p], r);
+          double scale = 1;
+          for (int m = 0; m < nm; ++m) scale += std::fabs(c[f * nm + m]) * (1 + degree);
+          worst = std::max(worst, static_cast<double>(std::fabs(value[f * n + p] - r[0])) / scale);
+          for (int a = 0; a < 3; ++a) {
+            const long double g = r[1] * j[a] + r[2] * j[3 + a] + r[3] * j[6 + a];
+            worst = std::max(worst, static_cast<double>(std::fabs(gradient[(3 * f + a) * n + p] - g)) / (3 * scale));
+          }
+        }
+    }
+  }
+  EXPECT_LE(worst, 1e-15);
+}
+
+TEST(PolynomialFit, A3dLatticeFitAboveTheBasisDegreeHasExactZeros) {
+  // P2's functions fitted on the lattices of degree 2 to 8 (a rotated, stretched tetrahedron: the reference
+  // functions are those of the reference tetrahedron whatever the element): the coefficients of the
+  // monomials of degree above 2 must come out exactly zero, and the fit must still be P2.
+  Mesh3 mesh = test3d::box_mesh(1, 1, 1, {0.3, -0.2, 0.1}, {1.7, 0.6, 2.3});
+  mesh = test3d::moved(mesh, {1, 2, 3}, 0.4, {0, 0, 0}, {0, 0, 0});
+  const test3d::P2Tet p2(mesh);
+  for (int degree = 2; degree <= kMaxLatticeDegree; ++degree) {
+    const PolynomialBasis3 fit(p2, mesh, degree, {0});
+    ASSERT_TRUE(fit.fitted()) << degree;
+    int nonzero = 0;
+    for (size_t f = 0; f < fit.functions().size(); ++f)
+      for (int m = monomial_count3(2); m < monomial_count3(degree); ++m)
+        if (fit.coefficients(0)[f * monomial_count3(degree) + m] != 0) ++nonzero;
+    EXPECT_EQ(nonzero, 0) << "degree " << degree;
+    // and it still evaluates P2: values and physical gradients at a point of element 1
+    const Point3 xi{0.21, 0.17, 0.33};
+    std::vector<double> value(10), gradient(30), basis(40);
+    fit.evaluate_points(1, &xi, 1, value.data(), gradient.data());
+    p2.evaluate(1, xi, basis.data());
+    for (int f = 0; f < 10; ++f) {
+      EXPECT_NEAR(value[f], basis[4 * f], 1e-12);
+      for (int a = 0; a < 3; ++a) EXPECT_NEAR(gradient[3 * f + a], basis[4 * f + 1 + a], 1e-11);
+    }
+  }
+}
+
+TEST(PolynomialFit, A2dLatticeFitAboveTheBasisDegreeHasExactZeros) {
+  // P1 on a grid's triangles fitted on the lattices of degree 1 to 8: the monomials of degree 2 and up get
+  // exactly zero, and the fit is still P1 at a point off the lattice.
+  const Mesh mesh = test::grid_mesh(2, 2, -0.3, 0.2, 1.9, 0.7, true);
+  const test::P1 p1(mesh);
+  const int elements = static_cast<int>(mesh.triangles.size());
+  for (int degree = 1; degree <= kMaxLatticeDegree; ++degree) {
+    BasisFit fit(p1, elements, degree, {0});
+    fit.fit_elements(elements);
+    ASSERT_TRUE(fit.fitted()) << degree;
+    const int nm = fit.terms();
+    int nonzero = 0;
+    double worst = 0;
+    const Point xi{0.23, 0.41};
+    double v[monomial_count(kMaxLatticeDegree)];
+    monomial_values(degree, xi, v);
+    for (size_t f = 0; f < fit.functions().size(); ++f) {
+      const double* c = fit.coefficients(0) + f * nm;
+      for (int m = monomial_count(1); m < nm; ++m) nonzero += c[m] != 0;
+      double s = 0;
+      for (int m = 0; m < nm; ++m) s += c[m] * v[m];
+      const double lambda[3] = {1 - xi.x - xi.y, xi.x, xi.y};  // P1's functions in the reference triangle
+      worst = std::max(worst, std::fabs(s - lambda[f]));
+    }
+    EXPECT_EQ(nonzero, 0) << "degree " << degree;
+    EXPECT_LE(worst, 1e-12) << "degree " << degree;  // the lattice's |V^-1| grows with the degree: 1.4e-14 at 8
+  }
+}
