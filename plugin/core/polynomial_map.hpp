@@ -52,7 +52,18 @@ struct PolynomialMapCoefficients {
 
 // x = X(xi), dx1 = dX/dxi1 and dx2 = dX/dxi2 from the coefficients c of degree D (1 <= D <=
 // kMaxPolynomialMapDegree, a constant: the loops unroll): the monomials' values once, then three sums of terms.
+// Scalar code for GCC: its vectorized powers need the pair (xi1, xi2), which it builds by storing the Point
+// argument's two halves (passed in two registers) to the stack and loading them back as one 16-byte word, a
+// store-forwarding stall on every call (a third of this function's time in the 2D listing's Newton pull-back;
+// the results are the same, the operations being the same element by element).
+#if defined(__GNUC__) && !defined(__clang__)
+#define DLMFSI_SCALAR_CODE __attribute__((optimize("no-tree-slp-vectorize")))
+#else
+#define DLMFSI_SCALAR_CODE
+#endif
+
 template <int D>
+DLMFSI_SCALAR_CODE
 void evaluate_polynomial(const PolynomialMapCoefficients& c, Point xi, Point& x, Point& dx1, Point& dx2) {
   static_assert(D >= 1 && D <= kMaxPolynomialMapDegree, "a polynomial map's degree");
   double v[monomial_count(D)];
