@@ -7,6 +7,8 @@ namespace dlmfsi {
 struct Triplet {
   int row, col;
   double value;
+  Triplet() = default;
+  Triplet(int r, int c, double v) : row(r), col(c), value(v) {}
 };
 
 // The rows 0 .. rows - 1 split into n consecutive ranges, one per compressing thread: range t holds the
