@@ -39,7 +39,8 @@ void LocalBlock::scatter(std::vector<Triplet>* const* out, const RowRanges& rang
     double* entry = &entries_[i];
     for (size_t c = 0; c < columns; ++c, entry += rows_) {
       if (*entry == 0.0) continue;
-      to.emplace_back(row, column_dofs_[c], *entry);  // in place: a pushed temporary is copied by a 16-byte load that waits for its two stores
+      // in place: a pushed temporary would be copied by a 16-byte load waiting for its two 8-byte stores
+      to.emplace_back(row, column_dofs_[c], *entry);
       *entry = 0.0;
     }
   }

@@ -12,8 +12,8 @@ namespace dlmfsi {
 // lattice3d.hpp's order, monomial_count3(degree) each) as sums of their non-zero terms: each function's
 // value and its three reference derivatives (the derivative polynomials, of degree - 1). A basis such as
 // P1b3d's is sparse (its bubble has 4 of the 35 monomials of degree 4, its linear part 4): the sums skip
-// the zero terms and are otherwise those of the dense sums, term by term in the order of the monomials,
-// so the values are the same bit for bit.
+// the zero terms and are otherwise the dense sums, term by term in the order of the monomials (the same
+// values bit for bit from the same monomial values).
 class PolynomialTerms3 {
  public:
   PolynomialTerms3() = default;
