@@ -46,9 +46,10 @@ void fit_on_lattice(const BasisOf<D>& basis, int k, const std::vector<int>& func
   const std::size_t width = functions.size(), count = static_cast<std::size_t>(nm);
   std::vector<double> values(count * width), vandermonde(count * count), row_size(count, 0.0);
   for (int q = 0; q < nm; ++q) {
-    basis.values(k, lattice(q), sample);
+    const auto xi = lattice(q);
+    basis.values(k, xi, sample);
     for (std::size_t f = 0; f < width; ++f) values[q * width + f] = sample[functions[f] * kSlots];
-    monomials(lattice(q), &vandermonde[q * count]);
+    monomials(xi, &vandermonde[q * count]);
   }
   for (std::size_t m = 0; m < count; ++m)
     for (std::size_t q = 0; q < count; ++q) row_size[m] += std::fabs(inverse[m * count + q]);

@@ -23,8 +23,8 @@ std::vector<dlmfsi::Triplet> matrix_triplets(Matrice_Creuse<double>* a, const st
     if (!std::isfinite(v))
       throw std::runtime_error(caller + ": the matrix holds NaN or Inf (row " + std::to_string(i) + ", column " +
                                std::to_string(j) + ")");
-    t.push_back({i, j, v});
-    if (h->half && i != j) t.push_back({j, i, v});
+    t.emplace_back(i, j, v);
+    if (h->half && i != j) t.emplace_back(j, i, v);
   }
   return t;
 }

@@ -71,11 +71,11 @@ AnyType PatchOp::operator()(Stack stack) const {
     std::vector<dlmfsi::Triplet>& t = parts[0];
     t = block(GetAny<Matrice_Creuse<double>*>((*app)(stack)), "App", np, np);
     for (const dlmfsi::Triplet& e : block(GetAny<Matrice_Creuse<double>*>((*ba)(stack)), "BA", nz, nr))
-      if (local[e.row] >= 0) t.push_back({local[e.row], np + e.col, e.value});
+      if (local[e.row] >= 0) t.emplace_back(local[e.row], np + e.col, e.value);
     for (const dlmfsi::Triplet& e : block(mab, "AB", nr, nz))
-      if (local[e.col] >= 0) t.push_back({np + e.row, local[e.col], e.value});
+      if (local[e.col] >= 0) t.emplace_back(np + e.row, local[e.col], e.value);
     for (const dlmfsi::Triplet& e : block(GetAny<Matrice_Creuse<double>*>((*bb)(stack)), "BB", nr, nr))
-      t.push_back({np + e.row, np + e.col, e.value});
+      t.emplace_back(np + e.row, np + e.col, e.value);
     dlmfsi::CsrMatrix p = dlmfsi::compress(np + nr, np + nr, parts);
     MatriceMorse<double>* pa = new MatriceMorse<double>(p.rows, p.cols, 0, 0);
     pa->set(p.rows, p.cols, 0, p.value.size(), p.start.data(), p.column.data(), p.value.data(), 0, 1);
