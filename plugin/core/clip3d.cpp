@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <initializer_list>
 #include <utility>
 
@@ -50,22 +52,25 @@ struct Box {
   }
 };
 
+// A vertex of the piece with the planes it lies on. Plain doubles rather than a Point3 (whose members are
+// zero-initialized): clip's array of 32 is then not cleared on every call.
 struct Candidate {
-  Point3 p;
+  double x, y, z;
   unsigned planes;
+  Point3 p() const { return {x, y, z}; }
 };
 
 // Orders the vertices of face plane `plane` (indices in list[0..m)) around the face by floating-point
 // angles in the projection along the dominant axis of the normal: the guard for plane sets that do not
 // form one cycle (not seen for finite input).
-void order_by_angles(const Candidate* c, int* list, int m, Point3 normal) {
+void order_by_angles(const Point3* v, int* list, int m, Point3 normal) {
   const double ax = std::fabs(normal.x), ay = std::fabs(normal.y), az = std::fabs(normal.z);
   const int axis = ax >= ay && ax >= az ? 0 : (ay >= az ? 1 : 2);
   auto uv = [axis](Point3 p) { return axis == 0 ? Point{p.y, p.z} : axis == 1 ? Point{p.z, p.x} : Point{p.x, p.y}; };
   Point mean{0, 0};
-  for (int k = 0; k < m; ++k) mean = mean + (1.0 / m) * uv(c[list[k]].p);
+  for (int k = 0; k < m; ++k) mean = mean + (1.0 / m) * uv(v[list[k]]);
   std::sort(list, list + m, [&](int i, int j) {
-    const Point pi = uv(c[i].p) - mean, pj = uv(c[j].p) - mean;
+    const Point pi = uv(v[i]) - mean, pj = uv(v[j]) - mean;
     return std::atan2(pi.y, pi.x) < std::atan2(pj.y, pj.x);
   });
 }
@@ -73,28 +78,32 @@ void order_by_angles(const Candidate* c, int* list, int m, Point3 normal) {
 // The piece from its vertices and their plane sets: vertices sorted lexicographically, each face's cycle
 // from the shared planes. normal(plane) gives a normal of a plane for the guard.
 template <class Normal>
-Piece3 assemble(Candidate* c, int n, Normal&& normal) {
+Piece3 assemble(const Candidate* c, int n, Normal&& normal) {
   Piece3 out;
+  // An index sort (moving 32-byte candidates cost more than comparing them).
+  int order[32];
+  for (int k = 0; k < n; ++k) order[k] = k;
   for (int k = 1; k < n; ++k)
-    for (int m = k; m > 0 && lex_less(c[m].p, c[m - 1].p); --m) std::swap(c[m], c[m - 1]);
+    for (int m = k; m > 0 && lex_less(c[order[m]].p(), c[order[m - 1]].p()); --m) std::swap(order[m], order[m - 1]);
   out.n = std::min(n, Piece3::kMaxVertices);
   for (int k = 0; k < out.n; ++k) {
-    out.v[k] = c[k].p;
-    out.planes[k] = static_cast<unsigned char>(c[k].planes);
+    out.v[k] = c[order[k]].p();
+    out.planes[k] = static_cast<unsigned char>(c[order[k]].planes);
   }
+  const unsigned char* planes = out.planes;
   int used = 0;
   for (int plane = 0; plane < 8; ++plane) {
     const unsigned bit = 1u << plane;
     int list[Piece3::kMaxVertices], m = 0;
     for (int k = 0; k < out.n; ++k)
-      if (c[k].planes & bit) list[m++] = k;
+      if (planes[k] & bit) list[m++] = k;
     if (m < 3 || out.faces == Piece3::kMaxFaces || used + m > Piece3::kMaxFaceIndices) continue;
     // The cycle: from the first vertex to its lower-numbered neighbour, then on to the neighbour that is
     // not the previous vertex; every vertex must have exactly two neighbours.
     auto neighbours = [&](int v, int* nb) {
       int count = 0;
       for (int k = 0; k < m; ++k)
-        if (list[k] != v && (c[list[k]].planes & c[v].planes & ~bit) != 0) {
+        if (list[k] != v && (planes[list[k]] & planes[v] & ~bit) != 0) {
           if (count < 2) nb[count] = list[k];
           ++count;
         }
@@ -118,7 +127,7 @@ Piece3 assemble(Candidate* c, int n, Normal&& normal) {
     ok = ok && length == m && current == list[0];
     if (!ok) {
       out.exact = false;
-      order_by_angles(c, list, m, normal(plane));
+      order_by_angles(out.v, list, m, normal(plane));
       std::copy(list, list + m, cycle);
     }
     for (int k = 0; k < m; ++k) out.face_index[used + k] = static_cast<unsigned char>(cycle[k]);
@@ -139,9 +148,16 @@ Point3 face_normal(const Point3 t[4], int i) {
 inline double unit_scale(std::initializer_list<Point3> points) {
   double m = 0;
   for (Point3 v : points) m = std::max({m, std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
-  int e;
-  std::frexp(m, &e);
-  return std::ldexp(1.0, -std::min(1000, std::max(-1000, e)));
+  // e as frexp gives it (m = f 2^e, 0.5 <= f < 1), from m's exponent field: field - 1022 for a normal m,
+  // at most -1022 (clamped to -1000) for a subnormal one, 0 for 0 and for inf; then 2^-e from its field.
+  std::uint64_t bits;
+  std::memcpy(&bits, &m, sizeof bits);
+  const int field = static_cast<int>(bits >> 52) & 0x7FF;
+  const int e = field == 0 ? (m == 0 ? 0 : -1000) : field == 0x7FF ? 0 : std::min(1000, std::max(-1000, field - 1022));
+  const std::uint64_t scale_bits = static_cast<std::uint64_t>(1023 - e) << 52;
+  double scale;
+  std::memcpy(&scale, &scale_bits, sizeof scale);
+  return scale;
 }
 
 // The point p + t (q - p) = q + (1 - t) (p - q), t = vp / (vp - vq), for the signed distances vp, vq (of
@@ -264,7 +280,7 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
   if (b_inside) return whole(b, 4);
 
   auto add = [&](Point3 p, unsigned planes) {
-    if (n < 32) c[n++] = {p, planes};
+    if (n < 32) c[n++] = {p.x, p.y, p.z, planes};
   };
   // Vertices of a in closed b: on a's three faces at the vertex and on b's faces where the side is 0.
   for (int i = 0; i < 4; ++i) {
