@@ -23,6 +23,26 @@ constexpr int kFace[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
 inline unsigned faces_at_vertex(int i) { return 0xFu & ~(1u << i); }
 inline unsigned faces_at_edge(int k, int l) { return 0xFu & ~(1u << k) & ~(1u << l); }
 
+// kPermutationSign[c][o]: the sign of the permutation (c, o, u, v) of (0, 1, 2, 3), u < v the other two.
+constexpr int kPermutationSign[4][4] = {{0, 1, -1, 1}, {-1, 0, 1, -1}, {1, -1, 0, 1}, {-1, 1, -1, 0}};
+
+// Where an edge (s, e) of one tetrahedron t' crosses the plane of face `cut` of a positively oriented
+// tetrahedron t strictly, the sign of the crossing X with respect to the plane of another face `other` of t
+// (the side functions f: f_j(t[j]) = det t > 0). The ends' signs side_s, side_e decide it unless they are
+// strictly opposite (X lies strictly between s and e). Otherwise, with (u, v), u < v, the edge of t where the
+// two planes meet,
+//   f_other(X) (f_cut(s) - f_cut(e)) = f_cut(s) f_other(e) - f_cut(e) f_other(s) = kappa orient3d(s, e, t_u, t_v)
+// (both sides affine in s and in e, antisymmetric, zero where the line s e meets the edge's line), and
+// s = t[cut], e = t[other] give det(t)^2 > 0 on the left, so kappa has the sign of the permutation
+// (cut, other, u, v); f_cut(s) - f_cut(e) has the sign of cut_side_s. orient() gives the orientation's
+// sign, asked only then.
+template <class Orient>
+inline int crossing_side(int side_s, int side_e, int cut_side_s, int permutation_sign, Orient&& orient) {
+  if (side_s >= 0 && side_e >= 0) return side_s > 0 || side_e > 0 ? 1 : 0;
+  if (side_s <= 0 && side_e <= 0) return -1;
+  return permutation_sign * orient() * cut_side_s;
+}
+
 inline void sort2(Point3& p, Point3& q) {
   if (lex_less(q, p)) std::swap(p, q);
 }
@@ -309,28 +329,35 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
     if (t == 2) t = static_cast<signed char>(orient3d(a[kEdge[ea][0]], a[kEdge[ea][1]], b[kEdge[eb][0]], b[kEdge[eb][1]]));
     return static_cast<int>(t);
   };
-  // An edge crossing the plane of a face (k, l, m) of the other tetrahedron strictly: the signs of its
-  // line against the face's edges (k, l), (l, m), (m, k) say where it passes: all equal, through the open
-  // face; one zero and two equal, through the open edge of the zero; two zeros, through a vertex (found
-  // above as a vertex in the other tetrahedron).
+  // An edge crossing the plane of a face (k, l, m) of the other tetrahedron strictly: the crossing's sides
+  // of that tetrahedron's other three face planes (crossing_side) say where it passes: all inside, through
+  // the open face; on one of them and inside the other two, through the open edge where that plane meets the
+  // face; on two, through a vertex (found above as a vertex in the other tetrahedron).
   unsigned long long edge_pairs = 0;  // the edge-edge crossings already added, bit 6 * ea + eb
   for (int ea = 0; ea < 6; ++ea) {
     const int p = kEdge[ea][0], q = kEdge[ea][1];
     for (int j = 0; j < 4; ++j) {
       if (sb[p][j] * sb[q][j] >= 0) continue;
       const int k = kFace[j][0], l = kFace[j][1], m = kFace[j][2];
-      const int eb[3] = {kEdgeIndex[k][l], kEdgeIndex[l][m], kEdgeIndex[k][m]};
-      const int t[3] = {orientation(ea, eb[0]), orientation(ea, eb[1]), -orientation(ea, eb[2])};
-      if (t[0] == t[1] && t[1] == t[2]) {
-        if (t[0] != 0) add(crossing(a[p], a[q], b[k], b[l], b[m]), faces_at_edge(p, q) | 1u << (4 + j));
-        continue;
+      // face z of the triangle: b's edge eb[z], where the plane of b's face opposite[z] meets face j
+      const int eb[3] = {kEdgeIndex[k][l], kEdgeIndex[l][m], kEdgeIndex[k][m]}, opposite[3] = {m, k, l};
+      int side[3], zeros = 0, zero = -1;
+      bool inside = true;
+      for (int z = 0; z < 3 && inside; ++z) {
+        const int o = opposite[z];
+        side[z] = crossing_side(sb[p][o], sb[q][o], sb[p][j], kPermutationSign[j][o],
+                                [&] { return orientation(ea, eb[z]); });
+        if (side[z] < 0) inside = false;
+        if (side[z] == 0) ++zeros, zero = z;
       }
-      for (int z = 0; z < 3; ++z) {
-        if (t[z] != 0 || t[(z + 1) % 3] != t[(z + 2) % 3] || t[(z + 1) % 3] == 0) continue;
-        const unsigned long long bit = 1ull << (6 * ea + eb[z]);
+      if (!inside) continue;
+      if (zeros == 0) {
+        add(crossing(a[p], a[q], b[k], b[l], b[m]), faces_at_edge(p, q) | 1u << (4 + j));
+      } else if (zeros == 1) {
+        const unsigned long long bit = 1ull << (6 * ea + eb[zero]);
         if (edge_pairs & bit) continue;
         edge_pairs |= bit;
-        const int x = kEdge[eb[z]][0], y = kEdge[eb[z]][1];
+        const int x = kEdge[eb[zero]][0], y = kEdge[eb[zero]][1];
         add(crossing(a[p], a[q], b[x], b[y]), faces_at_edge(p, q) | faces_at_edge(x, y) << 4);
       }
     }
@@ -342,10 +369,14 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
     for (int i = 0; i < 4; ++i) {
       if (sa[x][i] * sa[y][i] >= 0) continue;
       const int k = kFace[i][0], l = kFace[i][1], m = kFace[i][2];
-      const int t0 = orientation(kEdgeIndex[k][l], eb), t1 = orientation(kEdgeIndex[l][m], eb),
-                t2 = -orientation(kEdgeIndex[k][m], eb);
-      if (t0 == t1 && t1 == t2 && t0 != 0)
-        add(crossing(b[x], b[y], a[k], a[l], a[m]), faces_at_edge(x, y) << 4 | 1u << i);
+      const int ea[3] = {kEdgeIndex[k][l], kEdgeIndex[l][m], kEdgeIndex[k][m]}, opposite[3] = {m, k, l};
+      bool inside = true;
+      for (int z = 0; z < 3 && inside; ++z) {
+        const int o = opposite[z];
+        inside = crossing_side(sa[x][o], sa[y][o], sa[x][i], kPermutationSign[i][o],
+                               [&] { return orientation(ea[z], eb); }) > 0;
+      }
+      if (inside) add(crossing(b[x], b[y], a[k], a[l], a[m]), faces_at_edge(x, y) << 4 | 1u << i);
     }
   }
   if (n < 4) return Piece3{};  // the interiors do not meet (touching along a segment or at a point)
