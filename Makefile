@@ -38,7 +38,7 @@ compare: deps build
 # distributed solve is built, at n = 5 and 30 (3 times) and n = 60 (once, 20 minutes, 7.7 GB peak). About 30 + 80
 # minutes; QUICK=1 for tiny sizes.
 bench: deps build
-	@cmake --build $(BUILD) --target coupling_bench -j $(JOBS)
+	@cmake --build $(BUILD) --target coupling_bench coupling3d_bench -j $(JOBS)
 	DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) QUICK=$(QUICK) scripts/bench
 	@if [ -f $(BUILD)/plugin/dlmfsi_mumps.so ]; then \
 	  echo "DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) QUICK=$(QUICK) scripts/bench-mpi"; \
