@@ -9,7 +9,9 @@ namespace dlmfsi {
 
 BatchIntegrator::BatchIntegrator(const Integrand& integrand, CouplingReport& counts)
     : integrand_(integrand), counts_(counts), affine_rule_(triangle_rule(integrand.product_degree)),
-      gradients_(integrand.c1 != 0), fluid_functions_(integrand.fluid.functions().size()),
+      gradients_(integrand.c1 != 0),
+      constant_multiplier_gradients_(gradients_ && integrand.multiplier.degree() <= 1),
+      fluid_functions_(integrand.fluid.functions().size()),
       multiplier_functions_(integrand.multiplier.functions().size()) {}
 
 void BatchIntegrator::integrate(const ClippedImage& image, int kf, const Piece& piece, LocalBlock& block) {
@@ -69,8 +71,17 @@ void BatchIntegrator::evaluate(const MappedTriangle& mt, int kf, size_t n, bool 
   const int points = static_cast<int>(n);
   integrand_.fluid.evaluate_points(kf, eta_.data(), points, fv, gradients_ ? fv + fn : nullptr,
                                    gradients_ ? fv + 2 * fn : nullptr);
-  integrand_.multiplier.evaluate_points(mt.k, xi_.data(), points, sv, gradients_ ? sv + sn : nullptr,
-                                        gradients_ ? sv + 2 * sn : nullptr);
+  if (constant_multiplier_gradients_) {
+    // values at every point, the gradients (constant on the triangle) at the first
+    constant_gradients_.resize(3 * multiplier_functions_);
+    double* g = constant_gradients_.data();
+    integrand_.multiplier.evaluate_points(mt.k, xi_.data(), points, sv, nullptr, nullptr);
+    integrand_.multiplier.evaluate_points(mt.k, xi_.data(), 1, g + 2 * multiplier_functions_, g,
+                                          g + multiplier_functions_);
+  } else {
+    integrand_.multiplier.evaluate_points(mt.k, xi_.data(), points, sv, gradients_ ? sv + sn : nullptr,
+                                          gradients_ ? sv + 2 * sn : nullptr);
+  }
   // Fluid values and chain-rule gradients with the weights folded in (those the sums read).
   const std::vector<char>& read = twins ? integrand_.pairs.fluid_read_by_sources() : integrand_.pairs.fluid_read();
   const double c1 = integrand_.c1, c2 = integrand_.c2;
@@ -98,6 +109,11 @@ void BatchIntegrator::add_sums(size_t n, bool twins, LocalBlock& block) {
   const double* sv = multiplier_values_.data();
   const size_t fn = n * fluid_functions_, sn = n * multiplier_functions_;
   const ComponentPairs& pairs = integrand_.pairs;
+  if (constant_multiplier_gradients_) {
+    ++piece_;  // the gradient sums of the last piece are stale
+    gradient_sums_.resize(2 * fluid_functions_);
+    gradient_sum_of_.resize(fluid_functions_, 0);
+  }
   for (size_t p = 0; p < pairs.size(); ++p) {
     const ComponentPair& pair = pairs[p];
     if (twins && pair.source >= 0) continue;  // added with its source
@@ -107,7 +123,23 @@ void BatchIntegrator::add_sums(size_t n, bool twins, LocalBlock& block) {
         const double* psi = sv + static_cast<size_t>(pair.solid_functions[b]) * n;
         double sum = 0;
         for (size_t k = 0; k < n; ++k) sum += psi[k] * phi[k];
-        if (gradients_) {
+        if (constant_multiplier_gradients_) {
+          // sum_k grad psi . g_k = grad psi . sum_k g_k (g: the fluid function's weighted gradients)
+          const int f = pair.fluid_functions[a], m = pair.solid_functions[b];
+          if (gradient_sum_of_[f] != piece_) {
+            const double *gx = phi + fn, *gy = phi + 2 * fn;
+            double sx = 0, sy = 0;
+            for (size_t k = 0; k < n; ++k) {
+              sx += gx[k];
+              sy += gy[k];
+            }
+            gradient_sums_[2 * f] = sx;
+            gradient_sums_[2 * f + 1] = sy;
+            gradient_sum_of_[f] = piece_;
+          }
+          const double* g = constant_gradients_.data();
+          sum += g[m] * gradient_sums_[2 * f] + g[multiplier_functions_ + m] * gradient_sums_[2 * f + 1];
+        } else if (gradients_) {
           const double *px = psi + sn, *py = psi + 2 * sn, *gx = phi + fn, *gy = phi + 2 * fn;
           for (size_t k = 0; k < n; ++k) sum += px[k] * gx[k] + py[k] * gy[k];
         }

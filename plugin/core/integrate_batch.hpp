@@ -33,6 +33,11 @@ class BatchIntegrator : public PieceIntegrator {
   CouplingReport& counts_;
   const std::vector<RulePoint>& affine_rule_;  // exact for the product of the bases
   bool gradients_;                              // c1 != 0
+  // c1 != 0 and a multiplier fitted at degree 0 or 1: its gradients are constant on each solid triangle, evaluated
+  // once (constant_gradients_: d/dx, d/dy of each function, then values unused), and each fluid function's
+  // weighted gradients are summed along the points once per piece (gradient_sums_, valid where
+  // gradient_sum_of_ is piece_).
+  bool constant_multiplier_gradients_;
   size_t fluid_functions_, multiplier_functions_;
   // Per gathered point: weight, reference points in the fluid element and the solid triangle, dX/ds
   // (non-affine maps); then both bases' values and gradients, function by function along the points.
@@ -40,6 +45,9 @@ class BatchIntegrator : public PieceIntegrator {
   std::vector<Point> eta_, xi_;
   std::vector<std::array<double, 4>> jacobian_;
   std::vector<double> fluid_values_, multiplier_values_;
+  std::vector<double> constant_gradients_, gradient_sums_;
+  std::vector<unsigned long> gradient_sum_of_;
+  unsigned long piece_ = 0;
 };
 
 }  // namespace dlmfsi

@@ -13,7 +13,10 @@ namespace dlmfsi {
 
 PointIntegrator3::PointIntegrator3(const Integrand3& integrand, CouplingReport3& counts)
     : integrand_(integrand), counts_(counts), fluid_functions_(static_cast<int>(integrand.fluid.functions().size())),
-      gradients_(integrand.c1 != 0), listing_(integrand.c1 != 0 && !integrand.chain), values_(integrand) {}
+      gradients_(integrand.c1 != 0), listing_(integrand.c1 != 0 && !integrand.chain),
+      constant_multiplier_gradients_(gradients_ && !listing_ && integrand.multiplier.fitted() &&
+                                     integrand.multiplier.degree() <= 1),
+      values_(integrand) {}
 
 double PointIntegrator3::integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) {
   const double volume = gather(image, kf, piece);
@@ -96,6 +99,31 @@ void PointIntegrator3::weigh(const MappedTet& mt, int n, const std::vector<char>
 
 void PointIntegrator3::add_pairs(int n, bool twins, LocalBlock& block) {
   const ComponentPairs& pairs = integrand_.pairs;
+  if (constant_multiplier_gradients_) {
+    ++piece_;  // the gradient sums of the last piece are stale
+    gradient_sums_.resize(3 * static_cast<size_t>(fluid_functions_));
+    gradient_sum_of_.resize(static_cast<size_t>(fluid_functions_), 0);
+  }
+  // The chain rule's gradient term: grad psi . g summed along the points; with grad psi constant on the
+  // tetrahedron (a multiplier fitted at degree 0 or 1), grad psi(first point) . (sum_q g_q), each fluid
+  // function's sum formed once per piece.
+  auto gradient_term = [&](int f, const double* gphi, const double* gpsi) {
+    if (!constant_multiplier_gradients_) {
+      double sum = 0;
+      for (int q = 0; q < n; ++q) sum += gpsi[q] * gphi[q] + gpsi[n + q] * gphi[n + q] + gpsi[2 * n + q] * gphi[2 * n + q];
+      return sum;
+    }
+    double* g = &gradient_sums_[3 * static_cast<size_t>(f)];
+    if (gradient_sum_of_[f] != piece_) {
+      for (int i = 0; i < 3; ++i) {
+        double sum = 0;
+        for (int q = 0; q < n; ++q) sum += gphi[i * n + q];
+        g[i] = sum;
+      }
+      gradient_sum_of_[f] = piece_;
+    }
+    return gpsi[0] * g[0] + gpsi[n] * g[1] + gpsi[2 * n] * g[2];
+  };
   for (size_t p = 0; p < pairs.size(); ++p) {
     const ComponentPair& pair = pairs[p];
     if (twins && pair.source >= 0) continue;  // added with its source
@@ -109,8 +137,7 @@ void PointIntegrator3::add_pairs(int n, bool twins, LocalBlock& block) {
         const double* gpsi = values_.multiplier_gradient(si[b]);
         double sum = 0;
         for (int q = 0; q < n; ++q) sum += psi[q] * phi[q];
-        if (gradients_ && !listing_)
-          for (int q = 0; q < n; ++q) sum += gpsi[q] * gphi[q] + gpsi[n + q] * gphi[n + q] + gpsi[2 * n + q] * gphi[2 * n + q];
+        if (gradients_ && !listing_) sum += gradient_term(fi[a], gphi, gpsi);
         col[b] += sum;
         if (twins)
           for (int copy : pair.copies) block.column(pairs[copy].fluid_first + static_cast<int>(a))[pairs[copy].solid_first + static_cast<int>(b)] += sum;

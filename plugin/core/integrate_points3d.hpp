@@ -48,6 +48,13 @@ class PointIntegrator3 : public PieceIntegrator3 {
   CouplingReport3& counts_;
   int fluid_functions_;
   bool gradients_, listing_;  // c1 != 0; and the listings' product
+  // The chain rule with a multiplier fitted at degree 0 or 1 (gradients constant on a tetrahedron): each
+  // fluid function's weighted gradients summed along the points once per piece (gradient_sums_, valid
+  // where gradient_sum_of_ is piece_).
+  bool constant_multiplier_gradients_;
+  std::vector<double> gradient_sums_;
+  std::vector<unsigned long> gradient_sum_of_;
+  unsigned long piece_ = 0;
   std::vector<PointData> points_;
   std::vector<Point3> eta_, xi_;
   PointValues3 values_;
