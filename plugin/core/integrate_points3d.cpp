@@ -43,7 +43,7 @@ void PointIntegrator3::add_gathered(const MappedTet& mt, int kf, LocalBlock& blo
   const PolynomialBasis3 &fluid = integrand_.fluid, &multiplier = integrand_.multiplier;
   const bool twins = !listing_ && fluid.fitted() && multiplier.fitted() && fluid.shared(kf) && multiplier.shared(mt.k);
   weigh(mt, n, twins ? integrand_.pairs.fluid_read_by_sources() : integrand_.pairs.fluid_read());
-  add_pairs(n, twins, block);
+  add_pairs(mt, n, twins, block);
   if (listing_) add_listing(mt, n, block);
 }
 
@@ -81,6 +81,7 @@ double PointIntegrator3::gather(const ClippedImage3& image, int kf, const Piece3
 
 void PointIntegrator3::weigh(const MappedTet& mt, int n, const std::vector<char>& read) {
   const double(&aj)[3][3] = mt.affine_value.jac;
+  const bool gradients = gradients_ && !listing_ && !deferred_chain(mt);
   for (int f = 0; f < fluid_functions_; ++f) {
     if (!read[f]) continue;
     double* v = values_.fluid_value(f);
@@ -89,7 +90,7 @@ void PointIntegrator3::weigh(const MappedTet& mt, int n, const std::vector<char>
     for (int q = 0; q < n; ++q) {
       const double w = points_[q].weight;
       v[q] *= integrand_.c2 * w;
-      if (!gradients_ || listing_) continue;
+      if (!gradients) continue;
       const double* jq = mt.affine ? &aj[0][0] : points_[q].jac.data();
       const double d0 = g[0][q], d1 = g[1][q], d2 = g[2][q];
       for (int b = 0; b < 3; ++b) g[b][q] = integrand_.c1 * w * (d0 * jq[b] + d1 * jq[3 + b] + d2 * jq[6 + b]);
@@ -97,7 +98,7 @@ void PointIntegrator3::weigh(const MappedTet& mt, int n, const std::vector<char>
   }
 }
 
-void PointIntegrator3::add_pairs(int n, bool twins, LocalBlock& block) {
+void PointIntegrator3::add_pairs(const MappedTet& mt, int n, bool twins, LocalBlock& block) {
   const ComponentPairs& pairs = integrand_.pairs;
   if (constant_multiplier_gradients_) {
     ++piece_;  // the gradient sums of the last piece are stale
@@ -107,6 +108,7 @@ void PointIntegrator3::add_pairs(int n, bool twins, LocalBlock& block) {
   // The chain rule's gradient term: grad psi . g summed along the points; with grad psi constant on the
   // tetrahedron (a multiplier fitted at degree 0 or 1), grad psi(first point) . (sum_q g_q), each fluid
   // function's sum formed once per piece.
+  const bool deferred = deferred_chain(mt);
   auto gradient_term = [&](int f, const double* gphi, const double* gpsi) {
     if (!constant_multiplier_gradients_) {
       double sum = 0;
@@ -115,10 +117,22 @@ void PointIntegrator3::add_pairs(int n, bool twins, LocalBlock& block) {
     }
     double* g = &gradient_sums_[3 * static_cast<size_t>(f)];
     if (gradient_sum_of_[f] != piece_) {
-      for (int i = 0; i < 3; ++i) {
-        double sum = 0;
-        for (int q = 0; q < n; ++q) sum += gphi[i * n + q];
-        g[i] = sum;
+      if (deferred) {
+        // the raw gradients (weigh left them): c1 J^T sum_q w_q grad phi(q), J = dX/ds constant
+        double d[3];
+        for (int i = 0; i < 3; ++i) {
+          double sum = 0;
+          for (int q = 0; q < n; ++q) sum += points_[q].weight * gphi[i * n + q];
+          d[i] = sum;
+        }
+        const double(&aj)[3][3] = mt.affine_value.jac;
+        for (int b = 0; b < 3; ++b) g[b] = integrand_.c1 * (d[0] * aj[0][b] + d[1] * aj[1][b] + d[2] * aj[2][b]);
+      } else {
+        for (int i = 0; i < 3; ++i) {
+          double sum = 0;
+          for (int q = 0; q < n; ++q) sum += gphi[i * n + q];
+          g[i] = sum;
+        }
       }
       gradient_sum_of_[f] = piece_;
     }

@@ -39,9 +39,12 @@ class PointIntegrator3 : public PieceIntegrator3 {
   void add_gathered(const MappedTet& mt, int kf, LocalBlock& block);
   // The rule's points on the piece's tetrahedra, into points_; returns the piece's volume.
   double gather(const ClippedImage3& image, int kf, const Piece3& piece);
-  // Folds the weights (and the chain rule's jacobian) into the fluid functions read.
+  // Folds the weights (and the chain rule's jacobian, unless deferred_chain) into the fluid functions read.
   void weigh(const MappedTet& mt, int n, const std::vector<char>& read);
-  void add_pairs(int n, bool twins, LocalBlock& block);
+  void add_pairs(const MappedTet& mt, int n, bool twins, LocalBlock& block);
+  // Constant multiplier gradients on an affine map: weigh leaves the fluid gradients as they are, and
+  // add_pairs applies the weights and the constant jacobian to their sums along the points instead.
+  bool deferred_chain(const MappedTet& mt) const { return constant_multiplier_gradients_ && mt.affine; }
   void add_listing(const MappedTet& mt, int n, LocalBlock& block);
 
   const Integrand3& integrand_;
