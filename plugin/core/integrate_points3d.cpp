@@ -38,7 +38,13 @@ void PointIntegrator3::add_gathered(const MappedTet& mt, int kf, LocalBlock& blo
     eta_[q] = points_[q].eta;
     xi_[q] = points_[q].xi;
   }
-  values_.evaluate(kf, eta_.data(), mt.k, xi_.data(), n);
+  if (deferred_chain(mt)) {
+    weight_.resize(static_cast<size_t>(n));
+    for (int q = 0; q < n; ++q) weight_[q] = points_[q].weight;
+    values_.evaluate_fluid_gradient_sums(kf, eta_.data(), weight_.data(), mt.k, xi_.data(), n);
+  } else {
+    values_.evaluate(kf, eta_.data(), mt.k, xi_.data(), n);
+  }
   // Pairs that repeat an earlier pair's functions (on elements of the shared fits) copy its sums.
   const PolynomialBasis3 &fluid = integrand_.fluid, &multiplier = integrand_.multiplier;
   const bool twins = !listing_ && fluid.fitted() && multiplier.fitted() && fluid.shared(kf) && multiplier.shared(mt.k);
@@ -85,12 +91,12 @@ void PointIntegrator3::weigh(const MappedTet& mt, int n, const std::vector<char>
   for (int f = 0; f < fluid_functions_; ++f) {
     if (!read[f]) continue;
     double* v = values_.fluid_value(f);
+    for (int q = 0; q < n; ++q) v[q] *= integrand_.c2 * points_[q].weight;
+    if (!gradients) continue;
     double* const gradient = values_.fluid_gradient(f);
     double* g[3] = {gradient, gradient + n, gradient + 2 * n};
     for (int q = 0; q < n; ++q) {
       const double w = points_[q].weight;
-      v[q] *= integrand_.c2 * w;
-      if (!gradients) continue;
       const double* jq = mt.affine ? &aj[0][0] : points_[q].jac.data();
       const double d0 = g[0][q], d1 = g[1][q], d2 = g[2][q];
       for (int b = 0; b < 3; ++b) g[b][q] = integrand_.c1 * w * (d0 * jq[b] + d1 * jq[3 + b] + d2 * jq[6 + b]);
@@ -105,9 +111,10 @@ void PointIntegrator3::add_pairs(const MappedTet& mt, int n, bool twins, LocalBl
     gradient_sums_.resize(3 * static_cast<size_t>(fluid_functions_));
     gradient_sum_of_.resize(static_cast<size_t>(fluid_functions_), 0);
   }
-  // The chain rule's gradient term: grad psi . g summed along the points; with grad psi constant on the
-  // tetrahedron (a multiplier fitted at degree 0 or 1), grad psi(first point) . (sum_q g_q), each fluid
-  // function's sum formed once per piece.
+  // The chain rule's gradient term: grad psi . g summed along the points (g: the weighted chain-rule
+  // gradients weigh formed); with grad psi constant on the tetrahedron (a multiplier fitted at degree 0 or
+  // 1), grad psi(first point) . (sum_q g_q), each fluid function's sum formed once per piece (deferred_chain:
+  // from the weighted sums of its gradients).
   const bool deferred = deferred_chain(mt);
   auto gradient_term = [&](int f, const double* gphi, const double* gpsi) {
     if (!constant_multiplier_gradients_) {
@@ -118,13 +125,8 @@ void PointIntegrator3::add_pairs(const MappedTet& mt, int n, bool twins, LocalBl
     double* g = &gradient_sums_[3 * static_cast<size_t>(f)];
     if (gradient_sum_of_[f] != piece_) {
       if (deferred) {
-        // the raw gradients (weigh left them): c1 J^T sum_q w_q grad phi(q), J = dX/ds constant
-        double d[3];
-        for (int i = 0; i < 3; ++i) {
-          double sum = 0;
-          for (int q = 0; q < n; ++q) sum += points_[q].weight * gphi[i * n + q];
-          d[i] = sum;
-        }
+        // c1 J^T sum_q w_q grad phi(q), J = dX/ds constant, from the evaluation's weighted sums
+        const double* d = values_.fluid_gradient_sum(f);
         const double(&aj)[3][3] = mt.affine_value.jac;
         for (int b = 0; b < 3; ++b) g[b] = integrand_.c1 * (d[0] * aj[0][b] + d[1] * aj[1][b] + d[2] * aj[2][b]);
       } else {
@@ -144,7 +146,7 @@ void PointIntegrator3::add_pairs(const MappedTet& mt, int n, bool twins, LocalBl
     const std::vector<int>&fi = pair.fluid_functions, &si = pair.solid_functions;
     for (size_t a = 0; a < fi.size(); ++a) {
       const double* phi = values_.fluid_value(fi[a]);
-      const double* gphi = values_.fluid_gradient(fi[a]);
+      const double* gphi = deferred ? nullptr : values_.fluid_gradient(fi[a]);  // deferred: only their sums
       double* col = block.column(pair.fluid_first + static_cast<int>(a)) + pair.solid_first;
       for (size_t b = 0; b < si.size(); ++b) {
         const double* psi = values_.multiplier_value(si[b]);

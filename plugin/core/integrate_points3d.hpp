@@ -42,9 +42,12 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // Folds the weights (and the chain rule's jacobian, unless deferred_chain) into the fluid functions read.
   void weigh(const MappedTet& mt, int n, const std::vector<char>& read);
   void add_pairs(const MappedTet& mt, int n, bool twins, LocalBlock& block);
-  // Constant multiplier gradients on an affine map: weigh leaves the fluid gradients as they are, and
-  // add_pairs applies the weights and the constant jacobian to their sums along the points instead.
-  bool deferred_chain(const MappedTet& mt) const { return constant_multiplier_gradients_ && mt.affine; }
+  // Constant multiplier gradients, an affine map and a fitted fluid basis: the fluid gradients are only
+  // needed as their weighted sums along the points (PointValues3::evaluate_fluid_gradient_sums), to which
+  // add_pairs applies the constant jacobian; weigh leaves them.
+  bool deferred_chain(const MappedTet& mt) const {
+    return constant_multiplier_gradients_ && mt.affine && integrand_.fluid.fitted();
+  }
   void add_listing(const MappedTet& mt, int n, LocalBlock& block);
 
   const Integrand3& integrand_;
@@ -60,6 +63,7 @@ class PointIntegrator3 : public PieceIntegrator3 {
   unsigned long piece_ = 0;
   std::vector<PointData> points_;
   std::vector<Point3> eta_, xi_;
+  std::vector<double> weight_;  // deferred_chain: the points' weights
   PointValues3 values_;
 };
 

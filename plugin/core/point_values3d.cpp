@@ -18,6 +18,21 @@ void PointValues3::evaluate(int kf, const Point3* eta, int ks, const Point3* xi,
                 multiplier_gradient_.data());
 }
 
+void PointValues3::evaluate_fluid_gradient_sums(int kf, const Point3* eta, const double* weight, int ks,
+                                                const Point3* xi, int n) {
+  n_ = n;
+  const size_t nn = static_cast<size_t>(n);
+  const size_t fluid_functions = integrand_.fluid.functions().size();
+  const size_t multiplier_functions = integrand_.multiplier.functions().size();
+  fluid_value_.resize(nn * fluid_functions);
+  fluid_gradient_sum_.resize(3 * fluid_functions);
+  multiplier_value_.resize(nn * multiplier_functions);
+  multiplier_gradient_.resize(3 * nn * multiplier_functions);
+  integrand_.fluid.evaluate_gradient_sums(kf, eta, weight, n, fluid_value_.data(), fluid_gradient_sum_.data());
+  evaluate_side(integrand_.multiplier, integrand_.multiplier_space, ks, xi, multiplier_value_.data(),
+                multiplier_gradient_.data());
+}
+
 void PointValues3::evaluate_side(const PolynomialBasis3& poly, const Basis3& space, int k, const Point3* at,
                                  double* value, double* gradient) {
   const int n = n_;

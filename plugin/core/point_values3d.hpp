@@ -14,9 +14,13 @@ class PointValues3 {
 
   // The bases at the n points: eta in fluid element kf, xi in solid element ks (reference coordinates).
   void evaluate(int kf, const Point3* eta, int ks, const Point3* xi, int n);
+  // The same with the fluid gradients' weighted sums along the points (fluid_gradient_sum) in place of the
+  // fluid gradients (a fitted fluid basis).
+  void evaluate_fluid_gradient_sums(int kf, const Point3* eta, const double* weight, int ks, const Point3* xi, int n);
 
   double* fluid_value(int f) { return &fluid_value_[static_cast<size_t>(f) * n_]; }
   double* fluid_gradient(int f) { return &fluid_gradient_[3 * static_cast<size_t>(f) * n_]; }
+  const double* fluid_gradient_sum(int f) const { return &fluid_gradient_sum_[3 * static_cast<size_t>(f)]; }
   const double* multiplier_value(int g) const { return &multiplier_value_[static_cast<size_t>(g) * n_]; }
   const double* multiplier_gradient(int g) const { return &multiplier_gradient_[3 * static_cast<size_t>(g) * n_]; }
 
@@ -27,7 +31,8 @@ class PointValues3 {
   const Integrand3& integrand_;
   bool gradients_;  // c1 != 0: the fitted gradients are needed
   int n_ = 0;
-  std::vector<double> fluid_value_, fluid_gradient_, multiplier_value_, multiplier_gradient_, scratch_;
+  std::vector<double> fluid_value_, fluid_gradient_, fluid_gradient_sum_, multiplier_value_, multiplier_gradient_,
+      scratch_;
 };
 
 }  // namespace dlmfsi

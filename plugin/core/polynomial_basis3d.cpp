@@ -67,6 +67,17 @@ void PolynomialBasis3::evaluate_points(int k, const Point3* xi, int n, double* v
                         gradient);
 }
 
+void PolynomialBasis3::evaluate_gradient_sums(int k, const Point3* xi, const double* weight, int n, double* value,
+                                              double* gradient_sum) const {
+  if (shared(k) && !terms_.empty()) {
+    terms_.evaluate_gradient_sums(twin_.empty() ? nullptr : twin_.data(), inverse_jacobian(k), xi, weight, n, value,
+                                  gradient_sum);
+    return;
+  }
+  evaluate_polynomials3_gradient_sums(degree_, coefficients(k), functions_.size(), inverse_jacobian(k), xi, weight, n,
+                                      value, gradient_sum);
+}
+
 void PolynomialBasis3::evaluate(int k, Point3 xi, double* out) const {
   if (degree_ < 0) {
     basis_.evaluate(k, xi, out);

@@ -32,6 +32,10 @@ class PolynomialBasis3 {
   // functions() at point p, and when gradient is not null the physical first derivatives
   // gradient[(3 f + i) * n + p], i = x, y, z. Safe to call from several threads.
   void evaluate_points(int k, const Point3* xi, int n, double* value, double* gradient) const;
+  // The values as evaluate_points gives them and the gradients' weighted sums along the points,
+  // gradient_sum[3 f + i] = sum_p weight[p] d phi_f / d x_i (p) (fitted() only).
+  void evaluate_gradient_sums(int k, const Point3* xi, const double* weight, int n, double* value,
+                              double* gradient_sum) const;
 
   // Any basis (fitted or not): Basis3::evaluate's layout for the listed components.
   void evaluate(int k, Point3 xi, double* out) const;

@@ -116,6 +116,51 @@ void PolynomialTerms3::evaluate(const int* twin, const double* j, const Point3* 
   }
 }
 
+void PolynomialTerms3::evaluate_gradient_sums(const int* twin, const double* j, const Point3* xi, const double* weight,
+                                              int n, double* value, double* gradient_sum) const {
+  const int nm = monomial_count3(degree_), nm1 = degree_ > 0 ? monomial_count3(degree_ - 1) : 0;
+  thread_local std::vector<double> scratch, moment;
+  if (scratch.size() < static_cast<std::size_t>(nm) * n) scratch.resize(static_cast<std::size_t>(nm) * n);
+  if (moment.size() < static_cast<std::size_t>(std::max(nm1, 1))) moment.resize(static_cast<std::size_t>(std::max(nm1, 1)));
+  double* mono = scratch.data();
+  monomial_rows3(degree_, xi, n, mono);
+  // M_m for the monomials of degree - 1 (the first nm1 rows; M_0 = the sum of the weights)
+  for (int m = 0; m < std::max(nm1, 1); ++m) {
+    const double* row = mono + static_cast<std::size_t>(m) * n;
+    double sum = 0;
+    for (int p = 0; p < n; ++p) sum += weight[p] * row[p];
+    moment[m] = sum;
+  }
+  for (std::size_t f = 0; f < width_; ++f) {
+    if (twin && twin[f] >= 0) continue;  // copied below
+    const int s = start_[4 * f], e = start_[4 * f + 1];
+    sum_terms(constant_[4 * f], monomial_.data() + s, coefficient_.data() + s, e - s, mono, n, value + f * n);
+    double r[3];
+    for (int i = 0; i < 3; ++i) {
+      const std::size_t slot = 4 * f + 1 + i;
+      double sum = constant_[slot] * moment[0];
+      for (int t = start_[slot]; t < start_[slot + 1]; ++t) sum += coefficient_[t] * moment[monomial_[t]];
+      r[i] = sum;
+    }
+    for (int a = 0; a < 3; ++a) gradient_sum[3 * f + a] = r[0] * j[a] + r[1] * j[3 + a] + r[2] * j[6 + a];
+  }
+  if (!twin) return;
+  for (std::size_t f = 0; f < width_; ++f) {
+    const int t = twin[f];
+    if (t < 0) continue;
+    std::copy(value + t * n, value + (t + 1) * n, value + f * n);
+    std::copy(gradient_sum + 3 * t, gradient_sum + 3 * (t + 1), gradient_sum + 3 * f);
+  }
+}
+
+void evaluate_polynomials3_gradient_sums(int degree, const double* coef, std::size_t width, const double* j,
+                                         const Point3* xi, const double* weight, int n, double* value,
+                                         double* gradient_sum) {
+  thread_local PolynomialTerms3 terms;
+  terms.set(degree, coef, width);
+  terms.evaluate_gradient_sums(nullptr, j, xi, weight, n, value, gradient_sum);
+}
+
 void evaluate_polynomials3(int degree, const double* coef, std::size_t width, const int* twin, const double* j,
                            const Point3* xi, int n, double* value, double* gradient) {
   thread_local PolynomialTerms3 terms;

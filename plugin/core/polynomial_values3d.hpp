@@ -25,6 +25,12 @@ class PolynomialTerms3 {
   // first derivatives gradient[(3 f + i) * n + p] through j = d xi / d x (row-major). When twin is not
   // null, polynomial f with twin[f] >= 0 is a copy of polynomial twin[f] < f (copied, not computed).
   void evaluate(const int* twin, const double* j, const Point3* xi, int n, double* value, double* gradient) const;
+  // The values as above and, instead of the gradients, their weighted sums along the points:
+  // gradient_sum[3 f + i] = sum_p weight[p] d phi_f / d x_i (p). With M_m = sum_p weight[p] (monomial m)(p),
+  // the sum of a reference derivative is its constant times sum_p weight[p] plus its terms' coefficients
+  // times M_m, so the derivatives are never formed at the points.
+  void evaluate_gradient_sums(const int* twin, const double* j, const Point3* xi, const double* weight, int n,
+                              double* value, double* gradient_sum) const;
 
  private:
   int degree_ = 0;
@@ -40,5 +46,8 @@ class PolynomialTerms3 {
 // The same for one call (the terms formed on the way): a fit used once.
 void evaluate_polynomials3(int degree, const double* coef, std::size_t width, const int* twin, const double* j,
                            const Point3* xi, int n, double* value, double* gradient);
+void evaluate_polynomials3_gradient_sums(int degree, const double* coef, std::size_t width, const double* j,
+                                         const Point3* xi, const double* weight, int n, double* value,
+                                         double* gradient_sum);
 
 }  // namespace dlmfsi

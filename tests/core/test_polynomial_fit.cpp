@@ -85,6 +85,59 @@ TEST(PolynomialValues3d, SparseAndDensePolynomialsOfEveryDegreeWithTheirGradient
   EXPECT_LE(worst, 1e-15);
 }
 
+// evaluate_gradient_sums: the same values bit for bit, and the weighted sums of the gradients along the
+// points against long double sums of the exact reference derivatives (reference_sums) times j.
+TEST(PolynomialValues3d, GradientSumsOfEveryDegreeWithTwinsAgainstWeightedReferenceSums) {
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> u(-1, 1), pick(0, 1);
+  double worst = 0;
+  for (int degree = 0; degree <= kMaxLatticeDegree; ++degree) {
+    const int nm = monomial_count3(degree), width = 5, n = 17;
+    std::vector<double> c(static_cast<size_t>(width) * nm, 0.0);
+    const double keep[3] = {1.0, 0.5, 0.15};
+    for (int f = 0; f < 3; ++f)
+      for (int m = 0; m < nm; ++m)
+        if (pick(gen) < keep[f]) c[f * nm + m] = u(gen);
+    std::copy(&c[nm], &c[2 * nm], &c[3 * nm]);
+    const int twin[width] = {-1, -1, -1, 1, -1};
+    const double j[9] = {0.8, -0.4, 0.3, 0.2, 1.7, -0.5, -0.6, 0.1, 1.1};
+    std::vector<Point3> xi(n);
+    std::vector<double> w(n);
+    for (int p = 0; p < n; ++p) {
+      xi[p] = {pick(gen), pick(gen), pick(gen)};
+      w[p] = pick(gen);
+    }
+    for (bool with_twins : {false, true}) {
+      const int* tw = with_twins ? twin : nullptr;
+      PolynomialTerms3 terms(degree, c.data(), width);
+      std::vector<double> value(static_cast<size_t>(width) * n), gradient(3 * value.size());
+      terms.evaluate(tw, j, xi.data(), n, value.data(), gradient.data());
+      std::vector<double> value2(value.size()), sums(3 * static_cast<size_t>(width)), once(value.size()),
+          once_sums(sums.size());
+      terms.evaluate_gradient_sums(tw, j, xi.data(), w.data(), n, value2.data(), sums.data());
+      EXPECT_EQ(value2, value) << "degree " << degree;
+      evaluate_polynomials3_gradient_sums(degree, c.data(), width, j, xi.data(), w.data(), n, once.data(),
+                                          once_sums.data());
+      EXPECT_EQ(once, value) << "degree " << degree;
+      for (int f = 0; f < width; ++f) {
+        long double exact[3] = {0, 0, 0};
+        double scale = 1;
+        for (int m = 0; m < nm; ++m) scale += std::fabs(c[f * nm + m]) * (1 + degree);
+        for (int p = 0; p < n; ++p) {
+          long double r[4];
+          reference_sums(degree, &c[f * nm], xi[p], r);
+          for (int a = 0; a < 3; ++a) exact[a] += w[p] * (r[1] * j[a] + r[2] * j[3 + a] + r[3] * j[6 + a]);
+        }
+        for (int a = 0; a < 3; ++a) {
+          worst = std::max(worst, static_cast<double>(std::fabs(sums[3 * f + a] - exact[a])) / (3 * n * scale));
+          worst = std::max(worst, std::fabs(once_sums[3 * f + a] - static_cast<double>(exact[a])) / (3 * n * scale));
+        }
+      }
+    }
+  }
+  EXPECT_LE(worst, 1e-15);
+}
+
 TEST(PolynomialFit, A3dLatticeFitAboveTheBasisDegreeHasExactZeros) {
   // P2's functions fitted on the lattices of degree 2 to 8 (a rotated, stretched tetrahedron: the reference
   // functions are those of the reference tetrahedron whatever the element): the coefficients of the
