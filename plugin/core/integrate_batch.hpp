@@ -33,9 +33,9 @@ class BatchIntegrator : public PieceIntegrator {
   CouplingReport& counts_;
   const std::vector<RulePoint>& affine_rule_;  // exact for the product of the bases
   bool gradients_;                              // c1 != 0
-  // c1 != 0 and a multiplier fitted at degree 0 or 1: its gradients are constant on each solid triangle, evaluated
-  // once (constant_gradients_: d/dx, d/dy of each function, then values unused), and each fluid function's
-  // weighted gradients are summed along the points once per piece (gradient_sums_, valid where
+  // c1 != 0 and a multiplier fitted at degree 0 or 1: its gradients are constant on each solid triangle,
+  // evaluated once (constant_gradients_: d/dx, d/dy of each function, then values unused), and each fluid
+  // function's weighted gradients are summed along the points once per piece (gradient_sums_, valid where
   // gradient_sum_of_ is piece_).
   bool constant_multiplier_gradients_;
   size_t fluid_functions_, multiplier_functions_;

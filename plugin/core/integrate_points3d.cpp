@@ -119,7 +119,8 @@ void PointIntegrator3::add_pairs(const MappedTet& mt, int n, bool twins, LocalBl
   auto gradient_term = [&](int f, const double* gphi, const double* gpsi) {
     if (!constant_multiplier_gradients_) {
       double sum = 0;
-      for (int q = 0; q < n; ++q) sum += gpsi[q] * gphi[q] + gpsi[n + q] * gphi[n + q] + gpsi[2 * n + q] * gphi[2 * n + q];
+      for (int q = 0; q < n; ++q)
+        sum += gpsi[q] * gphi[q] + gpsi[n + q] * gphi[n + q] + gpsi[2 * n + q] * gphi[2 * n + q];
       return sum;
     }
     double* g = &gradient_sums_[3 * static_cast<size_t>(f)];
@@ -138,7 +139,8 @@ void PointIntegrator3::add_pairs(const MappedTet& mt, int n, bool twins, LocalBl
       }
       gradient_sum_of_[f] = piece_;
     }
-    return gpsi[0] * g[0] + gpsi[n] * g[1] + gpsi[2 * n] * g[2];
+    const int stride = deferred ? 1 : n;  // deferred: the multiplier's gradients at one point
+    return gpsi[0] * g[0] + gpsi[stride] * g[1] + gpsi[2 * stride] * g[2];
   };
   for (size_t p = 0; p < pairs.size(); ++p) {
     const ComponentPair& pair = pairs[p];
@@ -150,7 +152,8 @@ void PointIntegrator3::add_pairs(const MappedTet& mt, int n, bool twins, LocalBl
       double* col = block.column(pair.fluid_first + static_cast<int>(a)) + pair.solid_first;
       for (size_t b = 0; b < si.size(); ++b) {
         const double* psi = values_.multiplier_value(si[b]);
-        const double* gpsi = values_.multiplier_gradient(si[b]);
+        const double* gpsi =
+            deferred ? values_.multiplier_constant_gradient(si[b]) : values_.multiplier_gradient(si[b]);
         double sum = 0;
         for (int q = 0; q < n; ++q) sum += psi[q] * phi[q];
         if (gradients_ && !listing_) sum += gradient_term(fi[a], gphi, gpsi);

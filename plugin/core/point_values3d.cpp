@@ -27,10 +27,12 @@ void PointValues3::evaluate_fluid_gradient_sums(int kf, const Point3* eta, const
   fluid_value_.resize(nn * fluid_functions);
   fluid_gradient_sum_.resize(3 * fluid_functions);
   multiplier_value_.resize(nn * multiplier_functions);
-  multiplier_gradient_.resize(3 * nn * multiplier_functions);
+  multiplier_gradient_.resize(3 * multiplier_functions);
+  scratch_.resize(multiplier_functions);
   integrand_.fluid.evaluate_gradient_sums(kf, eta, weight, n, fluid_value_.data(), fluid_gradient_sum_.data());
-  evaluate_side(integrand_.multiplier, integrand_.multiplier_space, ks, xi, multiplier_value_.data(),
-                multiplier_gradient_.data());
+  // the multiplier's values at the points, its (constant) gradients at the first
+  integrand_.multiplier.evaluate_points(ks, xi, n, multiplier_value_.data(), nullptr);
+  integrand_.multiplier.evaluate_points(ks, xi, 1, scratch_.data(), multiplier_gradient_.data());
 }
 
 void PointValues3::evaluate_side(const PolynomialBasis3& poly, const Basis3& space, int k, const Point3* at,

@@ -15,7 +15,8 @@ class PointValues3 {
   // The bases at the n points: eta in fluid element kf, xi in solid element ks (reference coordinates).
   void evaluate(int kf, const Point3* eta, int ks, const Point3* xi, int n);
   // The same with the fluid gradients' weighted sums along the points (fluid_gradient_sum) in place of the
-  // fluid gradients (a fitted fluid basis).
+  // fluid gradients, for a fitted fluid basis and a multiplier fitted at degree 0 or 1, whose gradients
+  // are then evaluated at the first point only (multiplier_constant_gradient).
   void evaluate_fluid_gradient_sums(int kf, const Point3* eta, const double* weight, int ks, const Point3* xi, int n);
 
   double* fluid_value(int f) { return &fluid_value_[static_cast<size_t>(f) * n_]; }
@@ -23,6 +24,8 @@ class PointValues3 {
   const double* fluid_gradient_sum(int f) const { return &fluid_gradient_sum_[3 * static_cast<size_t>(f)]; }
   const double* multiplier_value(int g) const { return &multiplier_value_[static_cast<size_t>(g) * n_]; }
   const double* multiplier_gradient(int g) const { return &multiplier_gradient_[3 * static_cast<size_t>(g) * n_]; }
+  // After evaluate_fluid_gradient_sums: the multiplier's gradient (x, y, z), the same at every point.
+  const double* multiplier_constant_gradient(int g) const { return &multiplier_gradient_[3 * static_cast<size_t>(g)]; }
 
  private:
   void evaluate_side(const PolynomialBasis3& poly, const Basis3& space, int k, const Point3* at, double* value,

@@ -121,12 +121,13 @@ void PolynomialTerms3::evaluate_gradient_sums(const int* twin, const double* j, 
   const int nm = monomial_count3(degree_), nm1 = degree_ > 0 ? monomial_count3(degree_ - 1) : 0;
   thread_local std::vector<double> scratch, moment;
   if (scratch.size() < static_cast<std::size_t>(nm) * n) scratch.resize(static_cast<std::size_t>(nm) * n);
-  if (moment.size() < static_cast<std::size_t>(std::max(nm1, 1))) moment.resize(static_cast<std::size_t>(std::max(nm1, 1)));
+  const std::size_t moments = static_cast<std::size_t>(std::max(nm1, 1));
+  if (moment.size() < moments) moment.resize(moments);
   double* mono = scratch.data();
   monomial_rows3(degree_, xi, n, mono);
   // M_m for the monomials of degree - 1 (the first nm1 rows; M_0 = the sum of the weights)
-  for (int m = 0; m < std::max(nm1, 1); ++m) {
-    const double* row = mono + static_cast<std::size_t>(m) * n;
+  for (std::size_t m = 0; m < moments; ++m) {
+    const double* row = mono + m * n;
     double sum = 0;
     for (int p = 0; p < n; ++p) sum += weight[p] * row[p];
     moment[m] = sum;
