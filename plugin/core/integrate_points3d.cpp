@@ -25,22 +25,27 @@ double PointIntegrator3::integrate(const ClippedImage3& image, int kf, const Pie
 }
 
 void PointIntegrator3::add_points(const MappedTet& mt, int kf, const PointData* points, int n, LocalBlock& block) {
-  points_.assign(points, points + n);
+  clear_points();
+  for (int q = 0; q < n; ++q) {
+    eta_.push_back(points[q].eta);
+    xi_.push_back(points[q].xi);
+    weight_.push_back(points[q].weight);
+    if (!mt.affine) jac_.push_back(points[q].jac);
+  }
   add_gathered(mt, kf, block);
 }
 
+void PointIntegrator3::clear_points() {
+  eta_.clear();
+  xi_.clear();
+  weight_.clear();
+  jac_.clear();
+}
+
 void PointIntegrator3::add_gathered(const MappedTet& mt, int kf, LocalBlock& block) {
-  const int n = static_cast<int>(points_.size());
+  const int n = static_cast<int>(eta_.size());
   counts_.points += n;
-  eta_.resize(static_cast<size_t>(n));
-  xi_.resize(static_cast<size_t>(n));
-  for (int q = 0; q < n; ++q) {
-    eta_[q] = points_[q].eta;
-    xi_[q] = points_[q].xi;
-  }
   if (deferred_chain(mt)) {
-    weight_.resize(static_cast<size_t>(n));
-    for (int q = 0; q < n; ++q) weight_[q] = points_[q].weight;
     values_.evaluate_fluid_gradient_sums(kf, eta_.data(), weight_.data(), mt.k, xi_.data(), n);
   } else {
     values_.evaluate(kf, eta_.data(), mt.k, xi_.data(), n);
@@ -60,7 +65,7 @@ double PointIntegrator3::gather(const ClippedImage3& image, int kf, const Piece3
   MapValue3 mv;
   for (int v = 0; v < piece.n; ++v)
     xi_corner[v] = mt.affine ? mt.affine_reference(piece.v[v]) : pull_back(mt, piece.v[v], image.guess(piece.v[v]), mv);
-  points_.clear();
+  clear_points();
   double volume = 0;
   piece.for_each_tetrahedron_index([&](int i0, int i1, int i2, int i3) {
     const Point3 tet[4] = {piece.v[i0], piece.v[i1], piece.v[i2], piece.v[i3]};
@@ -71,15 +76,17 @@ double PointIntegrator3::gather(const ClippedImage3& image, int kf, const Piece3
       const Point3 y = from_reference(tet, rp.xi);
       Point3 xi = from_reference(xt, rp.xi);
       double det = mt.affine_det;
-      std::array<double, 9> jac{};
       if (!mt.affine) {
         xi = pull_back(mt, y, xi, mv);
         det = det3(mv.jac);
         if (!(det > 0)) throw Error("the map folds solid tetrahedron " + std::to_string(mt.k));
+        std::array<double, 9>& jac = jac_.emplace_back();
         for (int a = 0; a < 3; ++a)
           for (int b = 0; b < 3; ++b) jac[3 * a + b] = mv.jac[a][b];
       }
-      points_.push_back({integrand_.fluid.to_reference(kf, y), xi, vol * rp.weight / det, jac});
+      eta_.push_back(integrand_.fluid.to_reference(kf, y));
+      xi_.push_back(xi);
+      weight_.push_back(vol * rp.weight / det);
     }
   });
   return volume;
@@ -91,13 +98,13 @@ void PointIntegrator3::weigh(const MappedTet& mt, int n, const std::vector<char>
   for (int f = 0; f < fluid_functions_; ++f) {
     if (!read[f]) continue;
     double* v = values_.fluid_value(f);
-    for (int q = 0; q < n; ++q) v[q] *= integrand_.c2 * points_[q].weight;
+    for (int q = 0; q < n; ++q) v[q] *= integrand_.c2 * weight_[q];
     if (!gradients) continue;
     double* const gradient = values_.fluid_gradient(f);
     double* g[3] = {gradient, gradient + n, gradient + 2 * n};
     for (int q = 0; q < n; ++q) {
-      const double w = points_[q].weight;
-      const double* jq = mt.affine ? &aj[0][0] : points_[q].jac.data();
+      const double w = weight_[q];
+      const double* jq = mt.affine ? &aj[0][0] : jac_[q].data();
       const double d0 = g[0][q], d1 = g[1][q], d2 = g[2][q];
       for (int b = 0; b < 3; ++b) g[b][q] = integrand_.c1 * w * (d0 * jq[b] + d1 * jq[3 + b] + d2 * jq[6 + b]);
     }
@@ -179,8 +186,8 @@ void PointIntegrator3::add_listing(const MappedTet& mt, int n, LocalBlock& block
           const double* gpsi = values_.multiplier_gradient(pairs[a].solid_functions[ib]);
           double sum = 0;
           for (int q = 0; q < n; ++q) {
-            const double jac = mt.affine ? aj[a][c] : points_[q].jac[3 * a + c];
-            sum += integrand_.c1 * points_[q].weight * jac *
+            const double jac = mt.affine ? aj[a][c] : jac_[q][3 * a + c];
+            sum += integrand_.c1 * weight_[q] * jac *
                    (gpsi[q] * gphi[q] + gpsi[n + q] * gphi[n + q] + gpsi[2 * n + q] * gphi[2 * n + q]);
           }
           col[ib] += sum;

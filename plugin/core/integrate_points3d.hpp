@@ -35,9 +35,9 @@ class PointIntegrator3 : public PieceIntegrator3 {
   void add_points(const MappedTet& mt, int kf, const PointData* points, int n, LocalBlock& block);
 
  private:
-  // Evaluates both bases on points_ (in kf) and adds the sums to the block.
+  // Evaluates both bases on the gathered points (in kf) and adds the sums to the block.
   void add_gathered(const MappedTet& mt, int kf, LocalBlock& block);
-  // The rule's points on the piece's tetrahedra, into points_; returns the piece's volume.
+  // The rule's points on the piece's tetrahedra, into eta_, xi_, weight_ (and jac_); returns the piece's volume.
   double gather(const ClippedImage3& image, int kf, const Piece3& piece);
   // Folds the weights (and the chain rule's jacobian, unless deferred_chain) into the fluid functions read.
   void weigh(const MappedTet& mt, int n, const std::vector<char>& read);
@@ -61,9 +61,11 @@ class PointIntegrator3 : public PieceIntegrator3 {
   std::vector<double> gradient_sums_;
   std::vector<unsigned long> gradient_sum_of_;
   unsigned long piece_ = 0;
-  std::vector<PointData> points_;
+  // The gathered points, as PointData's fields (jac_ only where the map is not affine).
   std::vector<Point3> eta_, xi_;
-  std::vector<double> weight_;  // deferred_chain: the points' weights
+  std::vector<double> weight_;
+  std::vector<std::array<double, 9>> jac_;
+  void clear_points();
   PointValues3 values_;
 };
 
