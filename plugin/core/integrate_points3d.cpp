@@ -44,6 +44,7 @@ void PointIntegrator3::clear_points() {
 
 void PointIntegrator3::add_gathered(const MappedTet& mt, int kf, LocalBlock& block) {
   const int n = static_cast<int>(eta_.size());
+  if (n == 0) return;
   counts_.points += n;
   if (deferred_chain(mt)) {
     values_.evaluate_fluid_gradient_sums(kf, eta_.data(), weight_.data(), mt.k, xi_.data(), n);

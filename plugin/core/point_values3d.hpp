@@ -25,7 +25,9 @@ class PointValues3 {
   const double* multiplier_value(int g) const { return &multiplier_value_[static_cast<size_t>(g) * n_]; }
   const double* multiplier_gradient(int g) const { return &multiplier_gradient_[3 * static_cast<size_t>(g) * n_]; }
   // After evaluate_fluid_gradient_sums: the multiplier's gradient (x, y, z), the same at every point.
-  const double* multiplier_constant_gradient(int g) const { return &multiplier_gradient_[3 * static_cast<size_t>(g)]; }
+  const double* multiplier_constant_gradient(int g) const {
+    return &multiplier_gradient_[3 * static_cast<size_t>(g)];
+  }
 
  private:
   void evaluate_side(const PolynomialBasis3& poly, const Basis3& space, int k, const Point3* at, double* value,
