@@ -40,22 +40,32 @@ void reference_sums(int degree, const double* c, Point3 xi, long double out[4]) 
   }
 }
 
+// width = 5 polynomials of the degree: 0, 1, 2 with none, half and most of their coefficients zero, 3 a
+// twin of 1 (twin[3] = 1), 4 all zero.
+constexpr int kWidth = 5;
+constexpr int kTwin[kWidth] = {-1, -1, -1, 1, -1};
+std::vector<double> sparse_and_dense(int degree, std::mt19937& gen) {
+  std::uniform_real_distribution<double> u(-1, 1), pick(0, 1);
+  const int nm = monomial_count3(degree);
+  std::vector<double> c(static_cast<size_t>(kWidth) * nm, 0.0);
+  const double keep[3] = {1.0, 0.5, 0.15};
+  for (int f = 0; f < 3; ++f)
+    for (int m = 0; m < nm; ++m)
+      if (pick(gen) < keep[f]) c[f * nm + m] = u(gen);
+  std::copy(&c[nm], &c[2 * nm], &c[3 * nm]);
+  return c;
+}
+
 }  // namespace
 
 TEST(PolynomialValues3d, SparseAndDensePolynomialsOfEveryDegreeWithTheirGradients) {
   std::mt19937 gen(7);
-  std::uniform_real_distribution<double> u(-1, 1), pick(0, 1);
+  std::uniform_real_distribution<double> pick(0, 1);
   double worst = 0;
   for (int degree = 0; degree <= kMaxLatticeDegree; ++degree) {
-    const int nm = monomial_count3(degree), width = 5, n = 13;
-    // functions 0, 1, 2 with none, half and most of their coefficients zero; 3 a twin of 1; 4 all zero
-    std::vector<double> c(static_cast<size_t>(width) * nm, 0.0);
-    const double keep[3] = {1.0, 0.5, 0.15};
-    for (int f = 0; f < 3; ++f)
-      for (int m = 0; m < nm; ++m)
-        if (pick(gen) < keep[f]) c[f * nm + m] = u(gen);
-    std::copy(&c[nm], &c[2 * nm], &c[3 * nm]);
-    const int twin[width] = {-1, -1, -1, 1, -1};
+    const int nm = monomial_count3(degree), width = kWidth, n = 13;
+    const std::vector<double> c = sparse_and_dense(degree, gen);
+    const int* twin = kTwin;
     const double j[9] = {1.5, 0.2, -0.3, 0.1, -2.0, 0.4, 0.7, 0.3, 0.9};  // d xi / d x, row-major
     std::vector<Point3> xi(n);
     for (auto& p : xi) p = {pick(gen), pick(gen), pick(gen)};
@@ -89,17 +99,12 @@ TEST(PolynomialValues3d, SparseAndDensePolynomialsOfEveryDegreeWithTheirGradient
 // points against long double sums of the exact reference derivatives (reference_sums) times j.
 TEST(PolynomialValues3d, GradientSumsOfEveryDegreeWithTwinsAgainstWeightedReferenceSums) {
   std::mt19937 gen(11);
-  std::uniform_real_distribution<double> u(-1, 1), pick(0, 1);
+  std::uniform_real_distribution<double> pick(0, 1);
   double worst = 0;
   for (int degree = 0; degree <= kMaxLatticeDegree; ++degree) {
-    const int nm = monomial_count3(degree), width = 5, n = 17;
-    std::vector<double> c(static_cast<size_t>(width) * nm, 0.0);
-    const double keep[3] = {1.0, 0.5, 0.15};
-    for (int f = 0; f < 3; ++f)
-      for (int m = 0; m < nm; ++m)
-        if (pick(gen) < keep[f]) c[f * nm + m] = u(gen);
-    std::copy(&c[nm], &c[2 * nm], &c[3 * nm]);
-    const int twin[width] = {-1, -1, -1, 1, -1};
+    const int nm = monomial_count3(degree), width = kWidth, n = 17;
+    const std::vector<double> c = sparse_and_dense(degree, gen);
+    const int* twin = kTwin;
     const double j[9] = {0.8, -0.4, 0.3, 0.2, 1.7, -0.5, -0.6, 0.1, 1.1};
     std::vector<Point3> xi(n);
     std::vector<double> w(n);
