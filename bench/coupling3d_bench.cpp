@@ -12,20 +12,11 @@
 #include <vector>
 
 #include "../tests/core/support3d.hpp"
+#include "median.hpp"
 #include "coupling3d.hpp"
 
 using namespace dlmfsi;
 using namespace dlmfsi::test3d;
-
-namespace {
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   const int nf = argc > 1 ? std::atoi(argv[1]) : 16;

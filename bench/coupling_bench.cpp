@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "../tests/core/support.hpp"
+#include "median.hpp"
 #include "coupling.hpp"
 #include "field_map.hpp"
 
@@ -27,12 +28,6 @@ long minor_faults() {
   rusage u;
   getrusage(RUSAGE_SELF, &u);
   return u.ru_minflt;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 }  // namespace
