@@ -339,16 +339,16 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
     for (int j = 0; j < 4; ++j) {
       if (sb[p][j] * sb[q][j] >= 0) continue;
       const int k = kFace[j][0], l = kFace[j][1], m = kFace[j][2];
-      // face z of the triangle: b's edge eb[z], where the plane of b's face opposite[z] meets face j
+      // edge z of face j: b's edge eb[z], where the plane of b's face opposite[z] meets face j
       const int eb[3] = {kEdgeIndex[k][l], kEdgeIndex[l][m], kEdgeIndex[k][m]}, opposite[3] = {m, k, l};
-      int side[3], zeros = 0, zero = -1;
+      int zeros = 0, zero = -1;
       bool inside = true;
       for (int z = 0; z < 3 && inside; ++z) {
         const int o = opposite[z];
-        side[z] = crossing_side(sb[p][o], sb[q][o], sb[p][j], kPermutationSign[j][o],
-                                [&] { return orientation(ea, eb[z]); });
-        if (side[z] < 0) inside = false;
-        if (side[z] == 0) ++zeros, zero = z;
+        const int side = crossing_side(sb[p][o], sb[q][o], sb[p][j], kPermutationSign[j][o],
+                                       [&] { return orientation(ea, eb[z]); });
+        if (side < 0) inside = false;
+        if (side == 0) ++zeros, zero = z;
       }
       if (!inside) continue;
       if (zeros == 0) {

@@ -87,19 +87,30 @@ void BatchIntegrator::evaluate(const MappedTriangle& mt, int kf, size_t n, bool 
   const double c1 = integrand_.c1, c2 = integrand_.c2;
   const double(&aj)[2][2] = mt.affine_value.jac;
   const std::array<double, 4> affine_jacobian{aj[0][0], aj[0][1], aj[1][0], aj[1][1]};
+  if (constant_multiplier_gradients_) gradient_sums_.resize(2 * fluid_functions_);
   for (size_t f = 0; f < fluid_functions_; ++f) {
     if (!read[f]) continue;
     double* v = fv + f * n;
     for (size_t k = 0; k < n; ++k) v[k] *= c2 * weight_[k];
     if (!gradients_) continue;
     double *gx = fv + fn + f * n, *gy = fv + 2 * fn + f * n;
+    double sx = 0, sy = 0;
     for (size_t k = 0; k < n; ++k) {
       // grad_s (phi o X)_b = sum_a d_a phi dX_a/ds_b, jacobian = (dX_0/ds_0, dX_0/ds_1, dX_1/ds_0, dX_1/ds_1)
       const std::array<double, 4>& jac = mt.affine ? affine_jacobian : jacobian_[k];
       const double w = c1 * weight_[k];
-      const double g0 = gx[k] * jac[0] + gy[k] * jac[2], g1 = gx[k] * jac[1] + gy[k] * jac[3];
-      gx[k] = w * g0;
-      gy[k] = w * g1;
+      const double g0 = w * (gx[k] * jac[0] + gy[k] * jac[2]), g1 = w * (gx[k] * jac[1] + gy[k] * jac[3]);
+      if (constant_multiplier_gradients_) {
+        sx += g0;
+        sy += g1;
+      } else {
+        gx[k] = g0;
+        gy[k] = g1;
+      }
+    }
+    if (constant_multiplier_gradients_) {
+      gradient_sums_[2 * f] = sx;
+      gradient_sums_[2 * f + 1] = sy;
     }
   }
 }
@@ -109,11 +120,6 @@ void BatchIntegrator::add_sums(size_t n, bool twins, LocalBlock& block) {
   const double* sv = multiplier_values_.data();
   const size_t fn = n * fluid_functions_, sn = n * multiplier_functions_;
   const ComponentPairs& pairs = integrand_.pairs;
-  if (constant_multiplier_gradients_) {
-    ++piece_;  // the gradient sums of the last piece are stale
-    gradient_sums_.resize(2 * fluid_functions_);
-    gradient_sum_of_.resize(fluid_functions_, 0);
-  }
   for (size_t p = 0; p < pairs.size(); ++p) {
     const ComponentPair& pair = pairs[p];
     if (twins && pair.source >= 0) continue;  // added with its source
@@ -126,17 +132,6 @@ void BatchIntegrator::add_sums(size_t n, bool twins, LocalBlock& block) {
         if (constant_multiplier_gradients_) {
           // sum_k grad psi . g_k = grad psi . sum_k g_k (g: the fluid function's weighted gradients)
           const int f = pair.fluid_functions[a], m = pair.solid_functions[b];
-          if (gradient_sum_of_[f] != piece_) {
-            const double *gx = phi + fn, *gy = phi + 2 * fn;
-            double sx = 0, sy = 0;
-            for (size_t k = 0; k < n; ++k) {
-              sx += gx[k];
-              sy += gy[k];
-            }
-            gradient_sums_[2 * f] = sx;
-            gradient_sums_[2 * f + 1] = sy;
-            gradient_sum_of_[f] = piece_;
-          }
           const double* g = constant_gradients_.data();
           sum += g[m] * gradient_sums_[2 * f] + g[multiplier_functions_ + m] * gradient_sums_[2 * f + 1];
         } else if (gradients_) {

@@ -34,9 +34,8 @@ class BatchIntegrator : public PieceIntegrator {
   const std::vector<RulePoint>& affine_rule_;  // exact for the product of the bases
   bool gradients_;                              // c1 != 0
   // c1 != 0 and a multiplier fitted at degree 0 or 1: its gradients are constant on each solid triangle,
-  // evaluated once (constant_gradients_: d/dx, d/dy of each function, then values unused), and each fluid
-  // function's weighted gradients are summed along the points once per piece (gradient_sums_, valid where
-  // gradient_sum_of_ is piece_).
+  // evaluated once (constant_gradients_: d/dx, d/dy of each function, then values unused), and evaluate
+  // sums each fluid function's weighted gradients along the points (gradient_sums_: x, y per function).
   bool constant_multiplier_gradients_;
   size_t fluid_functions_, multiplier_functions_;
   // Per gathered point: weight, reference points in the fluid element and the solid triangle, dX/ds
@@ -46,8 +45,6 @@ class BatchIntegrator : public PieceIntegrator {
   std::vector<std::array<double, 4>> jacobian_;
   std::vector<double> fluid_values_, multiplier_values_;
   std::vector<double> constant_gradients_, gradient_sums_;
-  std::vector<unsigned long> gradient_sum_of_;
-  unsigned long piece_ = 0;
 };
 
 }  // namespace dlmfsi

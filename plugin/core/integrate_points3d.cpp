@@ -1,5 +1,6 @@
 #include "integrate_points3d.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -95,34 +96,42 @@ double PointIntegrator3::gather(const ClippedImage3& image, int kf, const Piece3
 
 void PointIntegrator3::weigh(const MappedTet& mt, int n, const std::vector<char>& read) {
   const double(&aj)[3][3] = mt.affine_value.jac;
-  const bool gradients = gradients_ && !listing_ && !deferred_chain(mt);
+  const bool deferred = deferred_chain(mt), gradients = gradients_ && !listing_;
+  if (constant_multiplier_gradients_) gradient_sums_.resize(3 * static_cast<size_t>(fluid_functions_));
   for (int f = 0; f < fluid_functions_; ++f) {
     if (!read[f]) continue;
     double* v = values_.fluid_value(f);
     for (int q = 0; q < n; ++q) v[q] *= integrand_.c2 * weight_[q];
     if (!gradients) continue;
+    double* sums = constant_multiplier_gradients_ ? &gradient_sums_[3 * static_cast<size_t>(f)] : nullptr;
+    if (deferred) {
+      // c1 J^T sum_q w_q grad phi(q), J = dX/ds constant, from the evaluation's weighted sums
+      const double* d = values_.fluid_gradient_sum(f);
+      for (int b = 0; b < 3; ++b) sums[b] = integrand_.c1 * (d[0] * aj[0][b] + d[1] * aj[1][b] + d[2] * aj[2][b]);
+      continue;
+    }
     double* const gradient = values_.fluid_gradient(f);
     double* g[3] = {gradient, gradient + n, gradient + 2 * n};
+    double s[3] = {0, 0, 0};
     for (int q = 0; q < n; ++q) {
       const double w = weight_[q];
       const double* jq = mt.affine ? &aj[0][0] : jac_[q].data();
       const double d0 = g[0][q], d1 = g[1][q], d2 = g[2][q];
-      for (int b = 0; b < 3; ++b) g[b][q] = integrand_.c1 * w * (d0 * jq[b] + d1 * jq[3 + b] + d2 * jq[6 + b]);
+      for (int b = 0; b < 3; ++b) {
+        const double gb = integrand_.c1 * w * (d0 * jq[b] + d1 * jq[3 + b] + d2 * jq[6 + b]);
+        if (sums) s[b] += gb;
+        else g[b][q] = gb;
+      }
     }
+    if (sums) std::copy(s, s + 3, sums);
   }
 }
 
 void PointIntegrator3::add_pairs(const MappedTet& mt, int n, bool twins, LocalBlock& block) {
   const ComponentPairs& pairs = integrand_.pairs;
-  if (constant_multiplier_gradients_) {
-    ++piece_;  // the gradient sums of the last piece are stale
-    gradient_sums_.resize(3 * static_cast<size_t>(fluid_functions_));
-    gradient_sum_of_.resize(static_cast<size_t>(fluid_functions_), 0);
-  }
   // The chain rule's gradient term: grad psi . g summed along the points (g: the weighted chain-rule
   // gradients weigh formed); with grad psi constant on the tetrahedron (a multiplier fitted at degree 0 or
-  // 1), grad psi(first point) . (sum_q g_q), each fluid function's sum formed once per piece (deferred_chain:
-  // from the weighted sums of its gradients).
+  // 1), grad psi . (sum_q g_q), the sums weigh formed.
   const bool deferred = deferred_chain(mt);
   auto gradient_term = [&](int f, const double* gphi, const double* gpsi) {
     if (!constant_multiplier_gradients_) {
@@ -131,22 +140,7 @@ void PointIntegrator3::add_pairs(const MappedTet& mt, int n, bool twins, LocalBl
         sum += gpsi[q] * gphi[q] + gpsi[n + q] * gphi[n + q] + gpsi[2 * n + q] * gphi[2 * n + q];
       return sum;
     }
-    double* g = &gradient_sums_[3 * static_cast<size_t>(f)];
-    if (gradient_sum_of_[f] != piece_) {
-      if (deferred) {
-        // c1 J^T sum_q w_q grad phi(q), J = dX/ds constant, from the evaluation's weighted sums
-        const double* d = values_.fluid_gradient_sum(f);
-        const double(&aj)[3][3] = mt.affine_value.jac;
-        for (int b = 0; b < 3; ++b) g[b] = integrand_.c1 * (d[0] * aj[0][b] + d[1] * aj[1][b] + d[2] * aj[2][b]);
-      } else {
-        for (int i = 0; i < 3; ++i) {
-          double sum = 0;
-          for (int q = 0; q < n; ++q) sum += gphi[i * n + q];
-          g[i] = sum;
-        }
-      }
-      gradient_sum_of_[f] = piece_;
-    }
+    const double* g = &gradient_sums_[3 * static_cast<size_t>(f)];
     const int stride = deferred ? 1 : n;  // deferred: the multiplier's gradients at one point
     return gpsi[0] * g[0] + gpsi[stride] * g[1] + gpsi[2 * stride] * g[2];
   };
@@ -156,7 +150,8 @@ void PointIntegrator3::add_pairs(const MappedTet& mt, int n, bool twins, LocalBl
     const std::vector<int>&fi = pair.fluid_functions, &si = pair.solid_functions;
     for (size_t a = 0; a < fi.size(); ++a) {
       const double* phi = values_.fluid_value(fi[a]);
-      const double* gphi = deferred ? nullptr : values_.fluid_gradient(fi[a]);  // deferred: only their sums
+      // with constant multiplier gradients only the sums are read (deferred: the gradients are not formed)
+      const double* gphi = constant_multiplier_gradients_ ? nullptr : values_.fluid_gradient(fi[a]);
       double* col = block.column(pair.fluid_first + static_cast<int>(a)) + pair.solid_first;
       for (size_t b = 0; b < si.size(); ++b) {
         const double* psi = values_.multiplier_value(si[b]);

@@ -39,12 +39,13 @@ class PointIntegrator3 : public PieceIntegrator3 {
   void add_gathered(const MappedTet& mt, int kf, LocalBlock& block);
   // The rule's points on the piece's tetrahedra, into eta_, xi_, weight_ (and jac_); returns the piece's volume.
   double gather(const ClippedImage3& image, int kf, const Piece3& piece);
-  // Folds the weights (and the chain rule's jacobian, unless deferred_chain) into the fluid functions read.
+  // Folds the weights and the chain rule's jacobian into the fluid functions read (with constant multiplier
+  // gradients, into their gradients' sums instead).
   void weigh(const MappedTet& mt, int n, const std::vector<char>& read);
   void add_pairs(const MappedTet& mt, int n, bool twins, LocalBlock& block);
   // Constant multiplier gradients, an affine map and a fitted fluid basis: the fluid gradients are only
   // needed as their weighted sums along the points (PointValues3::evaluate_fluid_gradient_sums), to which
-  // add_pairs applies the constant jacobian; weigh leaves them.
+  // weigh applies the constant jacobian.
   bool deferred_chain(const MappedTet& mt) const {
     return constant_multiplier_gradients_ && mt.affine && integrand_.fluid.fitted();
   }
@@ -54,13 +55,10 @@ class PointIntegrator3 : public PieceIntegrator3 {
   CouplingReport3& counts_;
   int fluid_functions_;
   bool gradients_, listing_;  // c1 != 0; and the listings' product
-  // The chain rule with a multiplier fitted at degree 0 or 1 (gradients constant on a tetrahedron): each
-  // fluid function's weighted gradients summed along the points once per piece (gradient_sums_, valid
-  // where gradient_sum_of_ is piece_).
+  // The chain rule with a multiplier fitted at degree 0 or 1 (gradients constant on a tetrahedron): weigh
+  // sums each fluid function's weighted chain-rule gradients along the points (gradient_sums_: x, y, z).
   bool constant_multiplier_gradients_;
   std::vector<double> gradient_sums_;
-  std::vector<unsigned long> gradient_sum_of_;
-  unsigned long piece_ = 0;
   // The gathered points, as PointData's fields (jac_ only where the map is not affine).
   std::vector<Point3> eta_, xi_;
   std::vector<double> weight_;

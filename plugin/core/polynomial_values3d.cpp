@@ -69,6 +69,13 @@ void monomial_rows3(int degree, const Point3* xi, int n, double* mono) {
   }
 }
 
+// The rows of the twins (twin[f] >= 0, when twin is not null): row f of `stride` values a copy of row twin[f].
+void copy_twins(const int* twin, std::size_t width, std::size_t stride, double* rows) {
+  if (!twin) return;
+  for (std::size_t f = 0; f < width; ++f)
+    if (twin[f] >= 0) std::copy(rows + twin[f] * stride, rows + (twin[f] + 1) * stride, rows + f * stride);
+}
+
 // out[p] = constant + sum over the terms of coefficient * mono[monomial * n + p], term by term.
 inline void sum_terms(double constant, const int* monomial, const double* coefficient, int terms, const double* mono,
                       int n, double* out) {
@@ -107,13 +114,8 @@ void PolynomialTerms3::evaluate(const int* twin, const double* j, const Point3* 
       for (int p = 0; p < n; ++p) g[p] = r[0][p] * j[a] + r[1][p] * j[3 + a] + r[2][p] * j[6 + a];
     }
   }
-  if (!twin) return;
-  for (std::size_t f = 0; f < width_; ++f) {
-    const int t = twin[f];
-    if (t < 0) continue;
-    std::copy(value + t * n, value + (t + 1) * n, value + f * n);
-    if (gradient) std::copy(gradient + 3 * t * n, gradient + 3 * (t + 1) * n, gradient + 3 * f * n);
-  }
+  copy_twins(twin, width_, n, value);
+  if (gradient) copy_twins(twin, width_, 3 * static_cast<std::size_t>(n), gradient);
 }
 
 void PolynomialTerms3::evaluate_gradient_sums(const int* twin, const double* j, const Point3* xi, const double* weight,
@@ -145,13 +147,8 @@ void PolynomialTerms3::evaluate_gradient_sums(const int* twin, const double* j, 
     }
     for (int a = 0; a < 3; ++a) gradient_sum[3 * f + a] = r[0] * j[a] + r[1] * j[3 + a] + r[2] * j[6 + a];
   }
-  if (!twin) return;
-  for (std::size_t f = 0; f < width_; ++f) {
-    const int t = twin[f];
-    if (t < 0) continue;
-    std::copy(value + t * n, value + (t + 1) * n, value + f * n);
-    std::copy(gradient_sum + 3 * t, gradient_sum + 3 * (t + 1), gradient_sum + 3 * f);
-  }
+  copy_twins(twin, width_, n, value);
+  copy_twins(twin, width_, 3, gradient_sum);
 }
 
 void evaluate_polynomials3_gradient_sums(int degree, const double* coef, std::size_t width, const double* j,
