@@ -27,8 +27,12 @@ size_t BatchIntegrator::gather(const ClippedImage& image, int kf, const Piece& p
   const auto& rule = mt.affine ? affine_rule_ : triangle_rule(image.degree);
   Point eta_corner[Piece::kMaxVertices], xi_corner[Piece::kMaxVertices];
   for (int v = 0; v < piece.n; ++v) {
-    xi_corner[v] = image.pull_back(piece.v[v]);
+    xi_corner[v] = image.guess(piece.v[v]);
     eta_corner[v] = integrand_.fluid.to_reference(kf, piece.v[v]);
+  }
+  if (!mt.affine) {
+    std::array<double, 4> jacobian[Piece::kMaxVertices];  // not used
+    mt.pull_back_points(piece.n, piece.v, xi_corner, jacobian, pull_back_scratch_);
   }
   const size_t n = static_cast<size_t>(piece.n - 2) * rule.size();
   if (weight_.size() < n) {
@@ -39,8 +43,8 @@ size_t BatchIntegrator::gather(const ClippedImage& image, int kf, const Piece& p
     fluid_values_.resize(3 * n * fluid_functions_);
     multiplier_values_.resize(3 * n * multiplier_functions_);
   }
+  if (!mt.affine && y_.size() < n) y_.resize(n);
   size_t q = 0;
-  MapValue mv;
   for (int t = 1; t + 1 < piece.n; ++t) {
     const Point tri[3] = {piece.v[0], piece.v[t], piece.v[t + 1]};
     const double area = 0.5 * area2(tri[0], tri[1], tri[2]);
@@ -52,14 +56,19 @@ size_t BatchIntegrator::gather(const ClippedImage& image, int kf, const Piece& p
       if (mt.affine) {
         weight_[q] = area * r.weight / mt.affine_det;
       } else {
-        xi_[q] = mt.pull_back(from_reference(tri, r.xi), xi_[q], mv);
-        const double det = det2(mv.jac);
-        if (!(det > 0)) throw Error("the map folds solid triangle " + std::to_string(mt.k));
-        weight_[q] = area * r.weight / det;
-        jacobian_[q] = {mv.jac[0][0], mv.jac[0][1], mv.jac[1][0], mv.jac[1][1]};
+        y_[q] = from_reference(tri, r.xi);
+        weight_[q] = area * r.weight;  // divided by det dX/ds below
       }
       ++q;
     }
+  }
+  if (mt.affine) return n;
+  mt.pull_back_points(static_cast<int>(n), y_.data(), xi_.data(), jacobian_.data(), pull_back_scratch_);
+  for (q = 0; q < n; ++q) {
+    const std::array<double, 4>& j = jacobian_[q];
+    const double det = j[0] * j[3] - j[1] * j[2];
+    if (!(det > 0)) throw Error("the map folds solid triangle " + std::to_string(mt.k));
+    weight_[q] /= det;
   }
   return n;
 }

@@ -41,8 +41,9 @@ class BatchIntegrator : public PieceIntegrator {
   // Per gathered point: weight, reference points in the fluid element and the solid triangle, dX/ds
   // (non-affine maps); then both bases' values and gradients, function by function along the points.
   std::vector<double> weight_;
-  std::vector<Point> eta_, xi_;
+  std::vector<Point> eta_, xi_, y_;  // y_: the points (non-affine maps)
   std::vector<std::array<double, 4>> jacobian_;
+  std::vector<double> pull_back_scratch_;
   std::vector<double> fluid_values_, multiplier_values_;
   std::vector<double> constant_gradients_, gradient_sums_;
 };

@@ -57,8 +57,12 @@ struct ClippedImage {
   Point pull_back(Point y) const {
     if (triangle.affine) return triangle.affine_reference(y);
     MapValue at;
-    if (part) return triangle.pull_back(y, from_reference(part->xi, to_reference(part->y, y)), at);
-    return triangle.pull_back(y, at);
+    return triangle.pull_back(y, guess(y), at);
+  }
+  // Newton's starting point for y: the affine pull-back of the triangle or, in a part, of the part (the
+  // pull-back itself on an affine triangle).
+  Point guess(Point y) const {
+    return part ? from_reference(part->xi, to_reference(part->y, y)) : triangle.affine_reference(y);
   }
 };
 

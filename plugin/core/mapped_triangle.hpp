@@ -42,6 +42,12 @@ class MappedTriangle : public TriangleMap {
     if (affine) return pull_back(y, value);
     return newton_pull_back(*this, xi_round_off_, y, guess, value);
   }
+  // The same at n points of a triangle that is not affine (newton_pull_back_points): xi the starting points
+  // in, the answers out; jacobian: dX/ds there.
+  void pull_back_points(int n, const Point* y, Point* xi, std::array<double, 4>* jacobian,
+                        std::vector<double>& scratch) const {
+    newton_pull_back_points(*this, xi_round_off_, n, y, xi, jacobian, scratch);
+  }
 
   // The round-off of an area inside the image computed from `pieces` convex pieces whose corners are
   // rounded fluid coordinates: each corner is known to about eps |y|, so a piece's area to about

@@ -88,4 +88,50 @@ void evaluate_polynomial(const PolynomialMapCoefficients& c, Point xi, Point& x,
   dx2 = {b0, b1};
 }
 
+// evaluate_polynomial<D> at n points xi = (xi1[p], xi2[p]), the results as arrays (x, y: X; a0, a1: dX/dxi1;
+// b0, b1: dX/dxi2; eight arrays that do not overlap): the same operations point by point, so the same values,
+// with the loop over the points vectorized.
+template <int D>
+void evaluate_polynomial_points(const PolynomialMapCoefficients& c, int n, const double* __restrict xi1,
+                                const double* __restrict xi2, double* __restrict x, double* __restrict y,
+                                double* __restrict a0, double* __restrict a1, double* __restrict b0,
+                                double* __restrict b1) {
+  static_assert(D >= 1 && D <= kMaxPolynomialMapDegree, "a polynomial map's degree");
+  constexpr int nm = monomial_count(D), n1 = monomial_count(D - 1);
+  for (int p = 0; p < n; ++p) {
+    // monomial_values(D, xi, v), written out on scalars so that the loop over the points vectorizes
+    double p1[D + 1], p2[D + 1], v[nm];
+    p1[0] = p2[0] = 1;
+#pragma GCC unroll 8
+    for (int i = 1; i <= D; ++i) {
+      p1[i] = p1[i - 1] * xi1[p];
+      p2[i] = p2[i - 1] * xi2[p];
+    }
+    int k = 0;
+#pragma GCC unroll 9
+    for (int t = 0; t <= D; ++t)
+#pragma GCC unroll 9
+      for (int b = 0; b <= t; ++b, ++k) v[k] = p1[t - b] * p2[b];
+    double x0 = 0, x1 = 0, d10 = 0, d11 = 0, d20 = 0, d21 = 0;
+#pragma GCC unroll 28
+    for (int m = 0; m < nm; ++m) {
+      x0 += c.x[2 * m] * v[m];
+      x1 += c.x[2 * m + 1] * v[m];
+    }
+#pragma GCC unroll 21
+    for (int m = 0; m < n1; ++m) {
+      d10 += c.d1[2 * m] * v[m];
+      d11 += c.d1[2 * m + 1] * v[m];
+      d20 += c.d2[2 * m] * v[m];
+      d21 += c.d2[2 * m + 1] * v[m];
+    }
+    x[p] = x0;
+    y[p] = x1;
+    a0[p] = d10;
+    a1[p] = d11;
+    b0[p] = d20;
+    b1[p] = d21;
+  }
+}
+
 }  // namespace dlmfsi

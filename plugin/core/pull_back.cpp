@@ -60,4 +60,74 @@ Point newton_pull_back(const TriangleMap& map, double xi_round_off, Point y, Poi
   throw Error("Newton's method did not converge pulling a point back into " + map.name());
 }
 
+namespace {
+
+// newton_pull_back's step at n points (the same operations): t = (dX/dxi)^-1 (y - x), dX/dxi = [a b].
+void newton_steps(int n, const double* __restrict y0, const double* __restrict y1, const double* __restrict x0,
+                  const double* __restrict x1, const double* __restrict a0, const double* __restrict a1,
+                  const double* __restrict b0, const double* __restrict b1, double* __restrict t1,
+                  double* __restrict t2) {
+  for (int q = 0; q < n; ++q) {
+    const double det = a0[q] * b1[q] - b0[q] * a1[q];
+    const double rx = y0[q] - x0[q], ry = y1[q] - x1[q];
+    t1[q] = (b1[q] * rx - b0[q] * ry) / det;
+    t2[q] = (a0[q] * ry - a1[q] * rx) / det;
+  }
+}
+
+}  // namespace
+
+void newton_pull_back_points(const TriangleMap& map, double xi_round_off, int n, const Point* y, Point* xi,
+                             std::array<double, 4>* jacobian, std::vector<double>& scratch) {
+  auto scalar = [&](int q) {
+    MapValue value;
+    xi[q] = newton_pull_back(map, xi_round_off, y[q], xi[q], value);
+    jacobian[q] = {value.jac[0][0], value.jac[0][1], value.jac[1][0], value.jac[1][1]};
+  };
+  if (!map.fitted()) {
+    for (int q = 0; q < n; ++q) scalar(q);
+    return;
+  }
+  const size_t m = static_cast<size_t>(n);
+  if (scratch.size() < 13 * m) scratch.resize(13 * m);
+  // the iterates (s1, s2), X there (x0, x1), its reference derivatives d1 = (a0, a1), d2 = (b0, b1), the
+  // steps (t1, t2), the points (y0, y1) and each point's state: 0 iterating, 1 converged (xi and jacobian
+  // set), 2 to be redone
+  double *s1 = scratch.data(), *s2 = s1 + m, *x0 = s2 + m, *x1 = x0 + m, *a0 = x1 + m, *a1 = a0 + m;
+  double *b0 = a1 + m, *b1 = b0 + m, *t1 = b1 + m, *t2 = t1 + m, *y0 = t2 + m, *y1 = y0 + m, *state = y1 + m;
+  for (int q = 0; q < n; ++q) {
+    s1[q] = xi[q].x;
+    s2[q] = xi[q].y;
+    y0[q] = y[q].x;
+    y1[q] = y[q].y;
+    state[q] = 0;
+  }
+  const double converged = std::max(1e-12, xi_round_off);
+  for (int it = 0; it < 2; ++it) {
+    map.polynomial_points(n, s1, s2, x0, x1, a0, a1, b0, b1);
+    newton_steps(n, y0, y1, x0, x1, a0, a1, b0, b1, t1, t2);
+    for (int q = 0; q < n; ++q) {
+      if (state[q] != 0) continue;
+      const double det = a0[q] * b1[q] - b0[q] * a1[q];
+      const double step = std::fabs(t1[q]) + std::fabs(t2[q]);
+      if (!(det > 0)) {
+        state[q] = 2;
+      } else if (step < converged) {
+        state[q] = 1;
+        xi[q] = Point{s1[q], s2[q]} + Point{t1[q], t2[q]};
+        MapValue value;
+        map.set_jacobian({a0[q], a1[q]}, {b0[q], b1[q]}, value);
+        jacobian[q] = {value.jac[0][0], value.jac[0][1], value.jac[1][0], value.jac[1][1]};
+      } else if (it == 1) {
+        state[q] = 2;
+      } else {
+        s1[q] += t1[q];
+        s2[q] += t2[q];
+      }
+    }
+  }
+  for (int q = 0; q < n; ++q)
+    if (state[q] == 2) scalar(q);
+}
+
 }  // namespace dlmfsi

@@ -64,6 +64,18 @@ void TriangleMap::polynomial(Point xi, Point& x, Point& dx1, Point& dx2) const {
   }
 }
 
+void TriangleMap::polynomial_points(int n, const double* xi1, const double* xi2, double* x, double* y, double* a0,
+                                    double* a1, double* b0, double* b1) const {
+  switch (degree_) {
+    case 1: evaluate_polynomial_points<1>(c_, n, xi1, xi2, x, y, a0, a1, b0, b1); break;
+    case 2: evaluate_polynomial_points<2>(c_, n, xi1, xi2, x, y, a0, a1, b0, b1); break;
+    case 3: evaluate_polynomial_points<3>(c_, n, xi1, xi2, x, y, a0, a1, b0, b1); break;
+    case 4: evaluate_polynomial_points<4>(c_, n, xi1, xi2, x, y, a0, a1, b0, b1); break;
+    case 5: evaluate_polynomial_points<5>(c_, n, xi1, xi2, x, y, a0, a1, b0, b1); break;
+    default: evaluate_polynomial_points<6>(c_, n, xi1, xi2, x, y, a0, a1, b0, b1); break;
+  }
+}
+
 MapValue TriangleMap::at(Point xi) const {
   if (degree_ < 1) return map_->evaluate(k, xi);
   MapValue v;

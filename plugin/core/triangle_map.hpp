@@ -54,6 +54,9 @@ class TriangleMap {
 
   // The fitted polynomial and its derivatives in xi (fitted() only).
   void polynomial(Point xi, Point& x, Point& d1, Point& d2) const;
+  // The same at n points, as arrays (evaluate_polynomial_points: x, y = X; a0, a1 = d1; b0, b1 = d2).
+  void polynomial_points(int n, const double* xi1, const double* xi2, double* x, double* y, double* a0, double* a1,
+                         double* b0, double* b1) const;
 
   // d1 = dX/dxi1 = dX/ds e1 and d2 = dX/dxi2 = dX/ds e2 from v.jac = dX/ds.
   void reference_jacobian(const MapValue& v, Point& d1, Point& d2) const {
