@@ -1,5 +1,7 @@
 #include "component_pairs.hpp"
 
+#include <algorithm>
+
 namespace dlmfsi {
 
 void ComponentPairs::find_twins(const std::vector<int>& fluid_representative,
@@ -25,6 +27,17 @@ void ComponentPairs::find_twins(const std::vector<int>& fluid_representative,
       fluid_read_[f] = 1;
       if (pair.source < 0) fluid_read_by_sources_[f] = 1;
     }
+  multiplier_read_.clear();
+  multiplier_read_by_sources_.clear();
+  for (const ComponentPair& pair : pairs_)
+    for (int f : pair.solid_functions) {
+      multiplier_read_.push_back(f);
+      if (pair.source < 0) multiplier_read_by_sources_.push_back(f);
+    }
+  for (std::vector<int>* read : {&multiplier_read_, &multiplier_read_by_sources_}) {
+    std::sort(read->begin(), read->end());
+    read->erase(std::unique(read->begin(), read->end()), read->end());
+  }
 }
 
 }  // namespace dlmfsi

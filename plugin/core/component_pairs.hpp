@@ -37,11 +37,15 @@ class ComponentPairs {
   // Per fitted fluid function: read by some pair; read by a pair that is not a copy.
   const std::vector<char>& fluid_read() const { return fluid_read_; }
   const std::vector<char>& fluid_read_by_sources() const { return fluid_read_by_sources_; }
+  // The fitted multiplier functions read by some pair; by a pair that is not a copy (each once, ascending).
+  const std::vector<int>& multiplier_read() const { return multiplier_read_; }
+  const std::vector<int>& multiplier_read_by_sources() const { return multiplier_read_by_sources_; }
 
  private:
   std::vector<ComponentPair> pairs_;
   std::vector<int> used_fluid_dofs_, used_multiplier_dofs_;
   std::vector<char> fluid_read_, fluid_read_by_sources_;
+  std::vector<int> multiplier_read_, multiplier_read_by_sources_;
 
   template <class Space>
   static std::vector<int> used_dofs(const Space& space, const std::vector<int>& components);

@@ -24,9 +24,15 @@ enum class JacobianSign { Positive, Folds, NearlyFolds };
 // where: a reference point at which det <= 0 (Folds) or the centre of an undecided sub-triangle.
 JacobianSign jacobian_sign(const std::function<double(Point)>& det, int n, int max_depth, Point& where);
 
+// A sufficient condition, from a fitted map's coefficients alone: true when det dX/dxi is at least a quarter
+// of that of the affine interpolant of the corner images on the whole reference triangle (maps near affine,
+// such as the bubbles of a P1b map of a smooth motion); false when not fitted or not decided so.
+bool jacobian_certainly_positive(const TriangleMap& map);
+
 // Throws Error naming the triangle when det dX/ds is not positive somewhere on the triangle of map (a fold)
-// or comes within about 1e-6 of zero relative to its scale (a near fold): certified by jacobian_sign with
-// max_depth 10 for a fitted map, sampled on the degree-8 lattice otherwise.
+// or comes within about 1e-6 of zero relative to its scale (a near fold): certified by
+// jacobian_certainly_positive or else by jacobian_sign with max_depth 10 for a fitted map, sampled on the
+// degree-8 lattice otherwise.
 void check_fold(const TriangleMap& map);
 
 }  // namespace dlmfsi

@@ -65,6 +65,7 @@ class PolynomialBasis {
   // The fit (BasisFit's accessors).
   bool fitted() const { return fit_.fitted(); }
   int degree() const { return fit_.degree(); }
+  int terms() const { return fit_.terms(); }
   const std::vector<int>& functions() const { return fit_.functions(); }
   bool shared(int k) const { return fit_.shared(k); }
   int twin(int f) const { return fit_.twin(f); }

@@ -52,6 +52,8 @@ class TriangleMap {
   // The map itself (not the fit) at xi.
   MapValue evaluate(Point xi) const { return map_->evaluate(k, xi); }
 
+  // The fitted polynomial's coefficients (fitted() only).
+  const PolynomialMapCoefficients& coefficients() const { return c_; }
   // The fitted polynomial and its derivatives in xi (fitted() only).
   void polynomial(Point xi, Point& x, Point& d1, Point& d2) const;
   // The same at n points, as arrays (evaluate_polynomial_points: x, y = X; a0, a1 = d1; b0, b1 = d2).
