@@ -10,6 +10,14 @@ namespace dlmfsi {
 
 namespace {
 
+// GCC would vectorize weighted_rows across two points (gathering each monomial's pair from two rows); with
+// the loop over the points kept scalar, it packs the monomials' sums instead.
+#if defined(__GNUC__) && !defined(__clang__)
+#define DLMFSI_NO_LOOP_VECTORIZE __attribute__((optimize("no-tree-loop-vectorize")))
+#else
+#define DLMFSI_NO_LOOP_VECTORIZE
+#endif
+
 // The monomials of degree <= d (NM = monomial_count(d); 0: nm of them, d read from nm) at the n points,
 // point-major: rows[k * nm + m].
 template <int NM>
@@ -34,27 +42,34 @@ void monomial_rows(int d, const Point* at, size_t n, int nm, double* rows) {
   }
 }
 
-// out[m] = sum_k weight[k] rows[k * stride + m] for m < count (NM: count when constant, else 0): the loop over
-// m vectorizes, each out[m] summed along k in order.
-template <int NM>
-void weighted_rows(const double* rows, size_t n, int stride, int count, const double* weight, double* out) {
+// out[j * count + m] = sum_k weight[j * n + k] rows[k * stride + m] for the W weight rows j and m < count
+// (NM: count when constant, else 0); each sum along k in order. W = 4 keeps 4 x 6 sums in registers.
+template <int NM, int W>
+DLMFSI_NO_LOOP_VECTORIZE void weighted_rows(const double* rows, size_t n, int stride, int count, const double* weight,
+                                            double* out) {
   const int c = NM > 0 ? NM : count;
-  double acc[NM > 0 ? NM : monomial_count(kMaxLatticeDegree)] = {};
+  double acc[W][NM > 0 ? NM : monomial_count(kMaxLatticeDegree)] = {};
   for (size_t k = 0; k < n; ++k) {
-    const double w = weight[k];
     const double* row = rows + k * stride;
-    for (int m = 0; m < c; ++m) acc[m] += w * row[m];
+#pragma GCC unroll 4
+    for (int j = 0; j < W; ++j) {
+      const double w = weight[j * n + k];
+#pragma GCC unroll 10
+      for (int m = 0; m < c; ++m) acc[j][m] += w * row[m];
+    }
   }
-  for (int m = 0; m < c; ++m) out[m] = acc[m];
+  for (int j = 0; j < W; ++j)
+    for (int m = 0; m < c; ++m) out[j * c + m] = acc[j][m];
 }
 
+template <int W>
 void weighted_rows(const double* rows, size_t n, int stride, int count, const double* weight, double* out) {
   switch (count) {
-    case 1: weighted_rows<1>(rows, n, stride, count, weight, out); break;
-    case 3: weighted_rows<3>(rows, n, stride, count, weight, out); break;
-    case 6: weighted_rows<6>(rows, n, stride, count, weight, out); break;
-    case 10: weighted_rows<10>(rows, n, stride, count, weight, out); break;
-    default: weighted_rows<0>(rows, n, stride, count, weight, out); break;
+    case 1: weighted_rows<1, W>(rows, n, stride, count, weight, out); break;
+    case 3: weighted_rows<3, W>(rows, n, stride, count, weight, out); break;
+    case 6: weighted_rows<6, W>(rows, n, stride, count, weight, out); break;
+    case 10: weighted_rows<10, W>(rows, n, stride, count, weight, out); break;
+    default: weighted_rows<0, W>(rows, n, stride, count, weight, out); break;
   }
 }
 
@@ -184,7 +199,7 @@ void BatchIntegrator::moments(const MappedTriangle& mt, int kf, size_t n, bool t
   for (int b : twins ? pairs.multiplier_read_by_sources() : pairs.multiplier_read()) {
     const double* psi = sv + static_cast<size_t>(b) * n;
     for (size_t k = 0; k < n; ++k) row_[k] = c2 * weight_[k] * psi[k];
-    weighted_rows(mono, n, nm, nm, row_.data(), &value_moments_[static_cast<size_t>(b) * nm]);
+    weighted_rows<1>(mono, n, nm, nm, row_.data(), &value_moments_[static_cast<size_t>(b) * nm]);
   }
   if (!gradients_) return;
   // Q_(e,c)m = sum_q c1 w_q (d eta_e/dy dX/ds_c)(q) m(q) over the derivatives' monomials (the first nm1),
@@ -197,7 +212,7 @@ void BatchIntegrator::moments(const MappedTriangle& mt, int kf, size_t n, bool t
     const double frame[4] = {j[0] * a[0][0] + j[1] * a[1][0], j[0] * a[0][1] + j[1] * a[1][1],
                              j[2] * a[0][0] + j[3] * a[1][0], j[2] * a[0][1] + j[3] * a[1][1]};
     for (size_t k = 0; k < n; ++k) row_[k] = c1 * weight_[k];
-    weighted_rows(mono, n, nm, nm1, row_.data(), q);
+    weighted_rows<1>(mono, n, nm, nm1, row_.data(), q);
     for (int ec = 3; ec >= 0; --ec)
       for (int m = 0; m < nm1; ++m) q[ec * nm1 + m] = frame[ec] * q[m];
   } else {
@@ -211,7 +226,7 @@ void BatchIntegrator::moments(const MappedTriangle& mt, int kf, size_t n, bool t
       f10[k] = w * (j[2] * a[0] + j[3] * a[2]);
       f11[k] = w * (j[2] * a[1] + j[3] * a[3]);
     }
-    for (int ec = 0; ec < 4; ++ec) weighted_rows(mono, n, nm, nm1, frame_.data() + ec * n, q + ec * nm1);
+    weighted_rows<4>(mono, n, nm, nm1, frame_.data(), q);
   }
   // sum_q w_q grad phi_f dX/ds, component c = sum_e sum_m E_efm Q_(e,c)m
   const std::vector<char>& read = twins ? pairs.fluid_read_by_sources() : pairs.fluid_read();
