@@ -69,6 +69,16 @@ void monomial_rows3(int degree, const Point3* xi, int n, double* mono) {
   }
 }
 
+// sum_p w[p] row[p], in four interleaved partial sums (one running sum would wait on each addition).
+double weighted_sum(const double* w, const double* row, int n) {
+  double s[4] = {0, 0, 0, 0};
+  int p = 0;
+  for (; p + 4 <= n; p += 4)
+    for (int i = 0; i < 4; ++i) s[i] += w[p + i] * row[p + i];
+  for (; p < n; ++p) s[0] += w[p] * row[p];
+  return (s[0] + s[1]) + (s[2] + s[3]);
+}
+
 // The rows of the twins (twin[f] >= 0, when twin is not null): row f of `stride` values a copy of row twin[f].
 void copy_twins(const int* twin, std::size_t width, std::size_t stride, double* rows) {
   if (!twin) return;
@@ -128,12 +138,7 @@ void PolynomialTerms3::evaluate_gradient_sums(const int* twin, const double* j, 
   double* mono = scratch.data();
   monomial_rows3(degree_, xi, n, mono);
   // M_m for the monomials of degree - 1 (the first nm1 rows; M_0 = the sum of the weights)
-  for (std::size_t m = 0; m < moments; ++m) {
-    const double* row = mono + m * n;
-    double sum = 0;
-    for (int p = 0; p < n; ++p) sum += weight[p] * row[p];
-    moment[m] = sum;
-  }
+  for (std::size_t m = 0; m < moments; ++m) moment[m] = weighted_sum(weight, mono + m * n, n);
   for (std::size_t f = 0; f < width_; ++f) {
     if (twin && twin[f] >= 0) continue;  // copied below
     const int s = start_[4 * f], e = start_[4 * f + 1];
