@@ -9,6 +9,7 @@
 #include "predicates3d.hpp"
 #include "pull_back3d.hpp"
 #include "rules.hpp"
+#include "weighted_sum.hpp"
 
 namespace dlmfsi {
 
@@ -157,8 +158,7 @@ void PointIntegrator3::add_pairs(const MappedTet& mt, int n, bool twins, LocalBl
         const double* psi = values_.multiplier_value(si[b]);
         const double* gpsi =
             deferred ? values_.multiplier_constant_gradient(si[b]) : values_.multiplier_gradient(si[b]);
-        double sum = 0;
-        for (int q = 0; q < n; ++q) sum += psi[q] * phi[q];
+        double sum = weighted_sum(psi, phi, n);
         if (gradients_ && !listing_) sum += gradient_term(fi[a], gphi, gpsi);
         col[b] += sum;
         if (twins)

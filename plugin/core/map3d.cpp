@@ -140,6 +140,12 @@ void MappedTet::prepare(const Mesh3& solid_mesh, const SolidMap3& map, int kk) {
   }
 }
 
+namespace {
+
+double coordinate(const Point3& p, int a) { return a == 0 ? p.x : (a == 1 ? p.y : p.z); }
+
+}  // namespace
+
 void MappedTet::classify() {
   // Compare X with the affine interpolant of the corner images at points of the faces and inside. Round-off
   // of the fit and of the map's own evaluation scales with the coordinates, not the tetrahedron.
@@ -150,6 +156,27 @@ void MappedTet::classify() {
   }
   for (const Point3& p : image) magnitude = std::max({magnitude, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
   const double tol = 1e-12 * scale + 1e-14 * magnitude;
+  // First from the fitted coefficients: X = F + N, F the terms of degree <= 1 and N the others, each
+  // monomial in [0, 1] on the tetrahedron. The affine interpolant of the corner images differs from F by the
+  // affine function of corner values image[i] - F(corner i), so at every point |X - interpolant| is at most
+  // sum |N's coefficients| + max_i |image[i] - F(corner i)|, component by component. Within tol: affine
+  // everywhere (and planar), not only at the samples below.
+  if (degree_ >= 2) {
+    const int nm = monomial_count3(degree_);
+    double bound = 0;  // NaN stays NaN: not decided here
+    for (int a = 0; a < 3; ++a) {
+      const double* c = c_[a];
+      double nonlinear = 0, corner = std::fabs(coordinate(image[0], a) - c[0]);
+      for (int m = 4; m < nm; ++m) nonlinear += std::fabs(c[m]);
+      for (int i = 1; i < 4; ++i) corner = std::max(corner, std::fabs(coordinate(image[i], a) - (c[0] + c[i])));
+      bound += nonlinear + corner;
+    }
+    if (bound <= tol) {
+      planar = affine = true;
+      nonlinearity = 0;
+      return;
+    }
+  }
   // Points on the faces (barycentric combinations of three corners) and inside.
   const double face_weights[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3}, {0.5, 0.25, 0.25}, {0.2, 0.7, 0.1}, {0.5, 0.5, 0}};
   planar = true;

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "lattice3d.hpp"
+#include "weighted_sum.hpp"
 
 namespace dlmfsi {
 
@@ -67,16 +68,6 @@ void monomial_rows3(int degree, const Point3* xi, int n, double* mono) {
     double* to = mono + static_cast<std::size_t>(m) * n;
     for (int p = 0; p < n; ++p) to[p] = from[p] * factor[p];
   }
-}
-
-// sum_p w[p] row[p], in four interleaved partial sums (one running sum would wait on each addition).
-double weighted_sum(const double* w, const double* row, int n) {
-  double s[4] = {0, 0, 0, 0};
-  int p = 0;
-  for (; p + 4 <= n; p += 4)
-    for (int i = 0; i < 4; ++i) s[i] += w[p + i] * row[p + i];
-  for (; p < n; ++p) s[0] += w[p] * row[p];
-  return (s[0] + s[1]) + (s[2] + s[3]);
 }
 
 // The rows of the twins (twin[f] >= 0, when twin is not null): row f of `stride` values a copy of row twin[f].
