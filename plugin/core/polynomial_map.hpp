@@ -62,12 +62,10 @@ struct PolynomialMapCoefficients {
 #define DLMFSI_SCALAR_CODE
 #endif
 
+// The sums of the terms of X and of its derivatives (degree D) at a point where the monomials take the values
+// v: out = (X, Y, dX/dxi1, dY/dxi1, dX/dxi2, dY/dxi2), each summed from 0 in the monomials' order.
 template <int D>
-DLMFSI_SCALAR_CODE
-void evaluate_polynomial(const PolynomialMapCoefficients& c, Point xi, Point& x, Point& dx1, Point& dx2) {
-  static_assert(D >= 1 && D <= kMaxPolynomialMapDegree, "a polynomial map's degree");
-  double v[monomial_count(D)];
-  monomial_values(D, xi, v);
+inline void sum_map_terms(const PolynomialMapCoefficients& c, const double* v, double out[6]) {
   constexpr int n = monomial_count(D), n1 = monomial_count(D - 1);
   // Local sums: the outputs may alias memory the compiler cannot keep in registers.
   double x0 = 0, x1 = 0, a0 = 0, a1 = 0, b0 = 0, b1 = 0;
@@ -83,9 +81,24 @@ void evaluate_polynomial(const PolynomialMapCoefficients& c, Point xi, Point& x,
     b0 += c.d2[2 * m] * v[m];
     b1 += c.d2[2 * m + 1] * v[m];
   }
-  x = {x0, x1};
-  dx1 = {a0, a1};
-  dx2 = {b0, b1};
+  out[0] = x0;
+  out[1] = x1;
+  out[2] = a0;
+  out[3] = a1;
+  out[4] = b0;
+  out[5] = b1;
+}
+
+template <int D>
+DLMFSI_SCALAR_CODE
+void evaluate_polynomial(const PolynomialMapCoefficients& c, Point xi, Point& x, Point& dx1, Point& dx2) {
+  static_assert(D >= 1 && D <= kMaxPolynomialMapDegree, "a polynomial map's degree");
+  double v[monomial_count(D)], s[6];
+  monomial_values(D, xi, v);
+  sum_map_terms<D>(c, v, s);
+  x = {s[0], s[1]};
+  dx1 = {s[2], s[3]};
+  dx2 = {s[4], s[5]};
 }
 
 // evaluate_polynomial<D> at n points xi = (xi1[p], xi2[p]), the results as arrays (x, y: X; a0, a1: dX/dxi1;
@@ -97,10 +110,10 @@ void evaluate_polynomial_points(const PolynomialMapCoefficients& c, int n, const
                                 double* __restrict a0, double* __restrict a1, double* __restrict b0,
                                 double* __restrict b1) {
   static_assert(D >= 1 && D <= kMaxPolynomialMapDegree, "a polynomial map's degree");
-  constexpr int nm = monomial_count(D), n1 = monomial_count(D - 1);
+  constexpr int nm = monomial_count(D);
   for (int p = 0; p < n; ++p) {
     // monomial_values(D, xi, v), written out on scalars so that the loop over the points vectorizes
-    double p1[D + 1], p2[D + 1], v[nm];
+    double p1[D + 1], p2[D + 1], v[nm], s[6];
     p1[0] = p2[0] = 1;
 #pragma GCC unroll 8
     for (int i = 1; i <= D; ++i) {
@@ -112,25 +125,13 @@ void evaluate_polynomial_points(const PolynomialMapCoefficients& c, int n, const
     for (int t = 0; t <= D; ++t)
 #pragma GCC unroll 9
       for (int b = 0; b <= t; ++b, ++k) v[k] = p1[t - b] * p2[b];
-    double x0 = 0, x1 = 0, d10 = 0, d11 = 0, d20 = 0, d21 = 0;
-#pragma GCC unroll 28
-    for (int m = 0; m < nm; ++m) {
-      x0 += c.x[2 * m] * v[m];
-      x1 += c.x[2 * m + 1] * v[m];
-    }
-#pragma GCC unroll 21
-    for (int m = 0; m < n1; ++m) {
-      d10 += c.d1[2 * m] * v[m];
-      d11 += c.d1[2 * m + 1] * v[m];
-      d20 += c.d2[2 * m] * v[m];
-      d21 += c.d2[2 * m + 1] * v[m];
-    }
-    x[p] = x0;
-    y[p] = x1;
-    a0[p] = d10;
-    a1[p] = d11;
-    b0[p] = d20;
-    b1[p] = d21;
+    sum_map_terms<D>(c, v, s);
+    x[p] = s[0];
+    y[p] = s[1];
+    a0[p] = s[2];
+    a1[p] = s[3];
+    b0[p] = s[4];
+    b1[p] = s[5];
   }
 }
 
