@@ -18,11 +18,11 @@ namespace {
 #define DLMFSI_NO_LOOP_VECTORIZE
 #endif
 
-// The monomials of degree <= d (NM = monomial_count(d); 0: nm of them, d read from nm) at the n points,
-// point-major: rows[k * nm + m].
+// The nm = monomial_count(d) monomials of degree <= d at the n points, point-major: rows[k * nm + m] (NM: nm
+// when it is one of the constants below, the loops then unrolled; else 0).
 template <int NM>
 void monomial_rows(int d, const Point* at, size_t n, int nm, double* rows) {
-  constexpr int kDegree = NM == 1 ? 0 : NM == 3 ? 1 : NM == 6 ? 2 : NM == 10 ? 3 : NM == 15 ? 4 : -1;
+  constexpr int kDegree = NM == 1 ? 0 : NM == 3 ? 1 : NM == 6 ? 2 : NM == 10 ? 3 : -1;
   const int degree = kDegree >= 0 ? kDegree : d;
   const int count = NM > 0 ? NM : nm;
   for (size_t k = 0; k < n; ++k) {
