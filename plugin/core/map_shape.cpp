@@ -20,9 +20,30 @@ MapShape map_shape(const TriangleMap& map, const Point image[3], const double im
   const double tol = 1e-12 * scale + 1e-14 * magnitude;
   const Point edge_points[6] = {{0.5, 0}, {0.5, 0.5}, {0, 0.5}, {0.25, 0}, {0.75, 0.25}, {0, 0.75}};
   const Point inner_points[3] = {{1.0 / 3, 1.0 / 3}, {0.2, 0.6}, {0.6, 0.15}};
+  // X and its reference derivatives at the corners, the edge points and the inner points (a fitted map: in
+  // one evaluation of the 12 points; the same values as one by one)
+  const Point corners[3] = {{0, 0}, {1, 0}, {0, 1}};
+  Point xs[12], d1s[12], d2s[12];
+  bool evaluated = false;
+  if (map.fitted()) {
+    double xi1[12], xi2[12], v[6][12];
+    for (int i = 0; i < 12; ++i) {
+      const Point p = i < 3 ? corners[i] : (i < 9 ? edge_points[i - 3] : inner_points[i - 9]);
+      xi1[i] = p.x;
+      xi2[i] = p.y;
+    }
+    map.polynomial_points(12, xi1, xi2, v[0], v[1], v[2], v[3], v[4], v[5]);
+    for (int i = 0; i < 12; ++i) {
+      xs[i] = {v[0][i], v[1][i]};
+      d1s[i] = {v[2][i], v[3][i]};
+      d2s[i] = {v[4][i], v[5][i]};
+    }
+    evaluated = true;
+  }
+  auto value = [&](int i, Point p) { return evaluated ? xs[i] : map.at(p).x; };
   MapShape shape;
   for (int e = 0; e < 6; ++e) {
-    const Point x = map.at(edge_points[e]).x;
+    const Point x = value(3 + e, edge_points[e]);
     if (!finite(x)) throw Error("the map is NaN or Inf inside " + map.name());
     const Point line = from_reference(image, edge_points[e]);
     // Straight edge: the image point lies on the chord through the corner images (a parametrisation along
@@ -33,8 +54,9 @@ MapShape map_shape(const TriangleMap& map, const Point image[3], const double im
     if (off > tol) shape.straight = false;
     if (std::fabs(x.x - line.x) + std::fabs(x.y - line.y) > tol) shape.affine = false;
   }
-  for (const Point& p : inner_points) {
-    const Point x = map.at(p).x;
+  for (int i = 0; i < 3; ++i) {
+    const Point p = inner_points[i];
+    const Point x = value(9 + i, p);
     if (!finite(x)) throw Error("the map is NaN or Inf inside " + map.name());
     const Point line = from_reference(image, p);
     if (std::fabs(x.x - line.x) + std::fabs(x.y - line.y) > tol) shape.affine = false;
@@ -42,14 +64,11 @@ MapShape map_shape(const TriangleMap& map, const Point image[3], const double im
   if (shape.affine) return shape;
   // The jacobian's variation at the corners and the sample points (its extremes: at the corners for a P2
   // map, at the edge midpoints for a P1b bubble).
-  const Point corners[3] = {{0, 0}, {1, 0}, {0, 1}};
-  for (const Point* set : {corners, edge_points, inner_points}) {
-    const int n = set == edge_points ? 6 : 3;
-    for (int i = 0; i < n; ++i) {
-      Point x, d1, d2;
-      map.reference_derivatives(set[i], x, d1, d2);
-      shape.nonlinearity = std::max(shape.nonlinearity, jacobian_variation(image_inv, d1, d2));
-    }
+  for (int i = 0; i < 12; ++i) {
+    Point x, d1 = d1s[i], d2 = d2s[i];
+    if (!evaluated)
+      map.reference_derivatives(i < 3 ? corners[i] : (i < 9 ? edge_points[i - 3] : inner_points[i - 9]), x, d1, d2);
+    shape.nonlinearity = std::max(shape.nonlinearity, jacobian_variation(image_inv, d1, d2));
   }
   return shape;
 }

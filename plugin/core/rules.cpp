@@ -76,7 +76,7 @@ std::vector<RulePoint> make_rule(int degree) {
     orbit3(r, 0.249286745170910, 0.116786275726379);
     orbit3(r, 0.063089014491502, 0.050844906370207);
     orbit6(r, 0.310352451033784, 0.053145049844817, 0.082851075618374);
-  } else if (degree == 8) {  // Dunavant
+  } else if (degree == 7 || degree == 8) {  // Dunavant degree 8 (16 points; the product rule of degree 7 has 20)
     r.push_back({{1.0 / 3, 1.0 / 3}, 0.144315607677787});
     orbit3(r, 0.459292588292723, 0.095091634267285);
     orbit3(r, 0.170569307751760, 0.103217370534718);
