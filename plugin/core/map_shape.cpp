@@ -23,12 +23,13 @@ MapShape map_shape(const TriangleMap& map, const Point image[3], const double im
   // X and its reference derivatives at the corners, the edge points and the inner points (a fitted map: in
   // one evaluation of the 12 points; the same values as one by one)
   const Point corners[3] = {{0, 0}, {1, 0}, {0, 1}};
+  auto sample = [&](int i) { return i < 3 ? corners[i] : (i < 9 ? edge_points[i - 3] : inner_points[i - 9]); };
   Point xs[12], d1s[12], d2s[12];
   bool evaluated = false;
   if (map.fitted()) {
     double xi1[12], xi2[12], v[6][12];
     for (int i = 0; i < 12; ++i) {
-      const Point p = i < 3 ? corners[i] : (i < 9 ? edge_points[i - 3] : inner_points[i - 9]);
+      const Point p = sample(i);
       xi1[i] = p.x;
       xi2[i] = p.y;
     }
@@ -40,10 +41,10 @@ MapShape map_shape(const TriangleMap& map, const Point image[3], const double im
     }
     evaluated = true;
   }
-  auto value = [&](int i, Point p) { return evaluated ? xs[i] : map.at(p).x; };
+  auto value = [&](int i) { return evaluated ? xs[i] : map.at(sample(i)).x; };
   MapShape shape;
   for (int e = 0; e < 6; ++e) {
-    const Point x = value(3 + e, edge_points[e]);
+    const Point x = value(3 + e);
     if (!finite(x)) throw Error("the map is NaN or Inf inside " + map.name());
     const Point line = from_reference(image, edge_points[e]);
     // Straight edge: the image point lies on the chord through the corner images (a parametrisation along
@@ -55,10 +56,9 @@ MapShape map_shape(const TriangleMap& map, const Point image[3], const double im
     if (std::fabs(x.x - line.x) + std::fabs(x.y - line.y) > tol) shape.affine = false;
   }
   for (int i = 0; i < 3; ++i) {
-    const Point p = inner_points[i];
-    const Point x = value(9 + i, p);
+    const Point x = value(9 + i);
     if (!finite(x)) throw Error("the map is NaN or Inf inside " + map.name());
-    const Point line = from_reference(image, p);
+    const Point line = from_reference(image, inner_points[i]);
     if (std::fabs(x.x - line.x) + std::fabs(x.y - line.y) > tol) shape.affine = false;
   }
   if (shape.affine) return shape;
@@ -66,8 +66,7 @@ MapShape map_shape(const TriangleMap& map, const Point image[3], const double im
   // map, at the edge midpoints for a P1b bubble).
   for (int i = 0; i < 12; ++i) {
     Point x, d1 = d1s[i], d2 = d2s[i];
-    if (!evaluated)
-      map.reference_derivatives(i < 3 ? corners[i] : (i < 9 ? edge_points[i - 3] : inner_points[i - 9]), x, d1, d2);
+    if (!evaluated) map.reference_derivatives(sample(i), x, d1, d2);
     shape.nonlinearity = std::max(shape.nonlinearity, jacobian_variation(image_inv, d1, d2));
   }
   return shape;
