@@ -194,11 +194,17 @@ void BatchIntegrator::moments(const MappedTriangle& mt, int kf, size_t n, bool t
   value_moments_.resize(multiplier_functions_ * nm);
   row_.resize(n);
   const double c1 = integrand_.c1, c2 = integrand_.c2;
+  const bool linear = multiplier.degree() == 1;  // psi_b = d0 + d1 xi1 + d2 xi2, summed as evaluate_points does
   double* sv = multiplier_values_.data();
-  multiplier.evaluate_points(mt.k, xi_.data(), points, sv, nullptr, nullptr);
+  if (!linear) multiplier.evaluate_points(mt.k, xi_.data(), points, sv, nullptr, nullptr);
   for (int b : twins ? pairs.multiplier_read_by_sources() : pairs.multiplier_read()) {
-    const double* psi = sv + static_cast<size_t>(b) * n;
-    for (size_t k = 0; k < n; ++k) row_[k] = c2 * weight_[k] * psi[k];
+    if (linear) {
+      const double* d = multiplier.coefficients(mt.k) + 3 * static_cast<size_t>(b);
+      for (size_t k = 0; k < n; ++k) row_[k] = c2 * weight_[k] * (d[0] + d[1] * xi_[k].x + d[2] * xi_[k].y);
+    } else {
+      const double* psi = sv + static_cast<size_t>(b) * n;
+      for (size_t k = 0; k < n; ++k) row_[k] = c2 * weight_[k] * psi[k];
+    }
     weighted_rows<1>(mono, n, nm, nm, row_.data(), &value_moments_[static_cast<size_t>(b) * nm]);
   }
   if (!gradients_) return;
