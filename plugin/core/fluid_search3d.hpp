@@ -14,7 +14,7 @@ struct Tetrahedra {
   using Piece = Piece3;
   static constexpr int kDim = 3, kCorners = 4;
 
-  static double coordinate(Point3 p, int a) { return a == 0 ? p.x : a == 1 ? p.y : p.z; }
+  static double coordinate(Point3 p, int a) { return dlmfsi::coordinate(p, a); }
   // The grid's cells per axis for nt tetrahedra over a box of widths w.
   static void cells_per_axis(int nt, const double w[3], int n[3]);
   // The bound on a visibility walk's steps in a mesh of n tetrahedra.

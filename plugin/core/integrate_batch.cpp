@@ -115,7 +115,7 @@ size_t BatchIntegrator::gather(const ClippedImage& image, int kf, const Piece& p
     eta_.resize(n);
     xi_.resize(n);
     jacobian_.resize(n);
-    fluid_values_.resize(3 * n * fluid_functions_);
+    if (!by_moments_) fluid_values_.resize(3 * n * fluid_functions_);  // the moments read the fit instead
     multiplier_values_.resize(3 * n * multiplier_functions_);
   }
   if (!mt.affine && y_.size() < n) y_.resize(n);

@@ -140,12 +140,6 @@ void MappedTet::prepare(const Mesh3& solid_mesh, const SolidMap3& map, int kk) {
   }
 }
 
-namespace {
-
-double coordinate(const Point3& p, int a) { return a == 0 ? p.x : (a == 1 ? p.y : p.z); }
-
-}  // namespace
-
 void MappedTet::classify() {
   // Compare X with the affine interpolant of the corner images at points of the faces and inside. Round-off
   // of the fit and of the map's own evaluation scales with the coordinates, not the tetrahedron.
