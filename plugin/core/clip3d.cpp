@@ -23,6 +23,48 @@ constexpr int kFace[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
 inline unsigned faces_at_vertex(int i) { return 0xFu & ~(1u << i); }
 inline unsigned faces_at_edge(int k, int l) { return 0xFu & ~(1u << k) & ~(1u << l); }
 
+// kStraddling[pos][neg]: the edges (bit e, kEdge's order) whose ends lie strictly on either side of a plane,
+// from the masks of the vertices strictly on its positive and on its negative side.
+constexpr unsigned straddling(unsigned pos, unsigned neg) {
+  unsigned edges = 0;
+  for (int e = 0; e < 6; ++e) {
+    const unsigned k = 1u << kEdge[e][0], l = 1u << kEdge[e][1];
+    if (((pos & k) && (neg & l)) || ((pos & l) && (neg & k))) edges |= 1u << e;
+  }
+  return edges;
+}
+struct StraddlingTable {
+  unsigned char edges[16][16];
+  constexpr StraddlingTable() : edges() {
+    for (unsigned pos = 0; pos < 16; ++pos)
+      for (unsigned neg = 0; neg < 16; ++neg) edges[pos][neg] = static_cast<unsigned char>(straddling(pos, neg));
+  }
+};
+constexpr StraddlingTable kStraddling;
+
+// The pairs (edge e of one tetrahedron, face plane j of the other) where the edge crosses the plane strictly,
+// as bits 4 e + j (so that visiting the set bits upwards goes edge by edge, plane by plane), from the
+// vertices' sides: pos[j] and neg[j] the masks of the vertices strictly on the positive and negative side of
+// plane j.
+constexpr unsigned spread(unsigned edges) {  // bit e to bit 4 e
+  unsigned out = 0;
+  for (int e = 0; e < 6; ++e)
+    if (edges & (1u << e)) out |= 1u << (4 * e);
+  return out;
+}
+struct SpreadTable {
+  unsigned bits[64];
+  constexpr SpreadTable() : bits() {
+    for (unsigned edges = 0; edges < 64; ++edges) bits[edges] = spread(edges);
+  }
+};
+constexpr SpreadTable kSpread;
+inline unsigned crossing_pairs(const unsigned pos[4], const unsigned neg[4]) {
+  unsigned pairs = 0;
+  for (int j = 0; j < 4; ++j) pairs |= kSpread.bits[kStraddling.edges[pos[j]][neg[j]]] << j;
+  return pairs;
+}
+
 // kPermutationSign[c][o]: the sign of the permutation (c, o, u, v) of (0, 1, 2, 3), u < v the other two.
 constexpr int kPermutationSign[4][4] = {{0, 1, -1, 1}, {-1, 0, 1, -1}, {1, -1, 0, 1}, {-1, 1, -1, 0}};
 
@@ -111,30 +153,34 @@ Piece3 assemble(const Candidate* c, int n, Normal&& normal) {
     out.planes[k] = static_cast<unsigned char>(c[order[k]].planes);
   }
   const unsigned char* planes = out.planes;
+  // on[plane]: the vertices on that plane (bit k for vertex k).
+  unsigned on[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  for (int k = 0; k < out.n; ++k)
+    for (unsigned p = planes[k]; p != 0; p &= p - 1) on[__builtin_ctz(p)] |= 1u << k;
   int used = 0;
   for (int plane = 0; plane < 8; ++plane) {
     const unsigned bit = 1u << plane;
     int list[Piece3::kMaxVertices], m = 0;
-    for (int k = 0; k < out.n; ++k)
-      if (planes[k] & bit) list[m++] = k;
+    for (unsigned v = on[plane]; v != 0; v &= v - 1) list[m++] = __builtin_ctz(v);
     if (m < 3 || out.faces == Piece3::kMaxFaces || used + m > Piece3::kMaxFaceIndices) continue;
     // The cycle: from the first vertex to its lower-numbered neighbour, then on to the neighbour that is
-    // not the previous vertex; every vertex must have exactly two neighbours.
+    // not the previous vertex; every vertex must have exactly two neighbours. v's neighbours on this face:
+    // the other vertices of the face that share another plane with v.
     auto neighbours = [&](int v, int* nb) {
-      int count = 0;
-      for (int k = 0; k < m; ++k)
-        if (list[k] != v && (planes[list[k]] & planes[v] & ~bit) != 0) {
-          if (count < 2) nb[count] = list[k];
-          ++count;
-        }
-      return count;
+      unsigned shared = 0;
+      for (unsigned p = planes[v] & ~bit; p != 0; p &= p - 1) shared |= on[__builtin_ctz(p)];
+      const unsigned found = on[plane] & shared & ~(1u << v);
+      if (found != 0) nb[0] = __builtin_ctz(found);
+      const unsigned rest = found & (found - 1);
+      if (rest != 0) nb[1] = __builtin_ctz(rest);
+      return __builtin_popcount(found);
     };
     int cycle[Piece3::kMaxVertices], length = 0;
     bool ok = true;
     int previous = -1, current = list[0];
     while (ok && length < m) {
       cycle[length++] = current;
-      int nb[2];
+      int nb[2] = {-1, -1};
       if (neighbours(current, nb) != 2) {
         ok = false;
         break;
@@ -276,26 +322,31 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
     return out;
   };
   // sb[i][j]: side of a[i] with respect to b's face j; sa[j][i] likewise.
+  // pos_b[j], neg_b[j]: the vertices of a strictly on the inner, outer side of b's face j (bit i); pos_a,
+  // neg_a the same for b's vertices and a's faces.
   int sb[4][4], sa[4][4];
+  unsigned pos_b[4], neg_b[4], pos_a[4], neg_a[4];
   for (int j = 0; j < 4; ++j) {
-    bool separates = true;
+    pos_b[j] = neg_b[j] = 0;
     for (int i = 0; i < 4; ++i) {
       sb[i][j] = b_faces.side(j, a[i]);
-      if (sb[i][j] > 0) separates = false;
-      if (sb[i][j] < 0) beyond |= 1u << j;
+      if (sb[i][j] > 0) pos_b[j] |= 1u << i;
+      if (sb[i][j] < 0) neg_b[j] |= 1u << i;
     }
-    if (separates) return Piece3{};
+    if (pos_b[j] == 0) return Piece3{};  // face j's plane separates
+    if (neg_b[j] != 0) beyond |= 1u << j;
   }
   if (beyond == 0) return whole(a, 0);  // a in closed b
   bool b_inside = true;
   for (int i = 0; i < 4; ++i) {
-    bool separates = true;
+    pos_a[i] = neg_a[i] = 0;
     for (int j = 0; j < 4; ++j) {
       sa[j][i] = a_faces.side(i, b[j]);
-      if (sa[j][i] > 0) separates = false;
-      if (sa[j][i] < 0) b_inside = false;
+      if (sa[j][i] > 0) pos_a[i] |= 1u << j;
+      if (sa[j][i] < 0) neg_a[i] |= 1u << j;
     }
-    if (separates) return Piece3{};
+    if (pos_a[i] == 0) return Piece3{};
+    if (neg_a[i] != 0) b_inside = false;
   }
   if (b_inside) return whole(b, 4);
 
@@ -334,57 +385,56 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
   // the open face; on one of them and inside the other two, through the open edge where that plane meets the
   // face; on two, through a vertex (found above as a vertex in the other tetrahedron).
   unsigned long long edge_pairs = 0;  // the edge-edge crossings already added, bit 6 * ea + eb
-  for (int ea = 0; ea < 6; ++ea) {
+  for (unsigned pairs = crossing_pairs(pos_b, neg_b); pairs != 0; pairs &= pairs - 1) {
+    const int at = __builtin_ctz(pairs), ea = at >> 2, j = at & 3;
     const int p = kEdge[ea][0], q = kEdge[ea][1];
-    for (int j = 0; j < 4; ++j) {
-      if (sb[p][j] * sb[q][j] >= 0) continue;
-      const int k = kFace[j][0], l = kFace[j][1], m = kFace[j][2];
-      // edge z of face j: b's edge eb[z], where the plane of b's face opposite[z] meets face j
-      const int eb[3] = {kEdgeIndex[k][l], kEdgeIndex[l][m], kEdgeIndex[k][m]}, opposite[3] = {m, k, l};
-      int zeros = 0, zero = -1;
-      bool inside = true;
-      for (int z = 0; z < 3 && inside; ++z) {
-        const int o = opposite[z];
-        const int side = crossing_side(sb[p][o], sb[q][o], sb[p][j], kPermutationSign[j][o],
-                                       [&] { return orientation(ea, eb[z]); });
-        if (side < 0) inside = false;
-        if (side == 0) ++zeros, zero = z;
-      }
-      if (!inside) continue;
-      if (zeros == 0) {
-        add(crossing(a[p], a[q], b[k], b[l], b[m]), faces_at_edge(p, q) | 1u << (4 + j));
-      } else if (zeros == 1) {
-        const unsigned long long bit = 1ull << (6 * ea + eb[zero]);
-        if (edge_pairs & bit) continue;
-        edge_pairs |= bit;
-        const int x = kEdge[eb[zero]][0], y = kEdge[eb[zero]][1];
-        add(crossing(a[p], a[q], b[x], b[y]), faces_at_edge(p, q) | faces_at_edge(x, y) << 4);
-      }
+    const int k = kFace[j][0], l = kFace[j][1], m = kFace[j][2];
+    // edge z of face j: b's edge eb[z], where the plane of b's face opposite[z] meets face j
+    const int eb[3] = {kEdgeIndex[k][l], kEdgeIndex[l][m], kEdgeIndex[k][m]}, opposite[3] = {m, k, l};
+    int zeros = 0, zero = -1;
+    bool inside = true;
+    for (int z = 0; z < 3 && inside; ++z) {
+      const int o = opposite[z];
+      const int side = crossing_side(sb[p][o], sb[q][o], sb[p][j], kPermutationSign[j][o],
+                                     [&] { return orientation(ea, eb[z]); });
+      if (side < 0) inside = false;
+      if (side == 0) ++zeros, zero = z;
+    }
+    if (!inside) continue;
+    if (zeros == 0) {
+      add(crossing(a[p], a[q], b[k], b[l], b[m]), faces_at_edge(p, q) | 1u << (4 + j));
+    } else if (zeros == 1) {
+      const unsigned long long bit = 1ull << (6 * ea + eb[zero]);
+      if (edge_pairs & bit) continue;
+      edge_pairs |= bit;
+      const int x = kEdge[eb[zero]][0], y = kEdge[eb[zero]][1];
+      add(crossing(a[p], a[q], b[x], b[y]), faces_at_edge(p, q) | faces_at_edge(x, y) << 4);
     }
   }
   // b's edges through a's open faces (the edge-edge crossings were all found from a's side: an edge of a
   // crossing an open edge of b strictly crosses the plane of a face of b at that edge).
-  for (int eb = 0; eb < 6; ++eb) {
+  for (unsigned pairs = crossing_pairs(pos_a, neg_a); pairs != 0; pairs &= pairs - 1) {
+    const int at = __builtin_ctz(pairs), eb = at >> 2, i = at & 3;
     const int x = kEdge[eb][0], y = kEdge[eb][1];
-    for (int i = 0; i < 4; ++i) {
-      if (sa[x][i] * sa[y][i] >= 0) continue;
-      const int k = kFace[i][0], l = kFace[i][1], m = kFace[i][2];
-      const int ea[3] = {kEdgeIndex[k][l], kEdgeIndex[l][m], kEdgeIndex[k][m]}, opposite[3] = {m, k, l};
-      bool inside = true;
-      for (int z = 0; z < 3 && inside; ++z) {
-        const int o = opposite[z];
-        inside = crossing_side(sa[x][o], sa[y][o], sa[x][i], kPermutationSign[i][o],
-                               [&] { return orientation(ea[z], eb); }) > 0;
-      }
-      if (inside) add(crossing(b[x], b[y], a[k], a[l], a[m]), faces_at_edge(x, y) << 4 | 1u << i);
+    const int k = kFace[i][0], l = kFace[i][1], m = kFace[i][2];
+    const int ea[3] = {kEdgeIndex[k][l], kEdgeIndex[l][m], kEdgeIndex[k][m]}, opposite[3] = {m, k, l};
+    bool inside = true;
+    for (int z = 0; z < 3 && inside; ++z) {
+      const int o = opposite[z];
+      inside = crossing_side(sa[x][o], sa[y][o], sa[x][i], kPermutationSign[i][o],
+                             [&] { return orientation(ea[z], eb); }) > 0;
     }
+    if (inside) add(crossing(b[x], b[y], a[k], a[l], a[m]), faces_at_edge(x, y) << 4 | 1u << i);
   }
   if (n < 4) return Piece3{};  // the interiors do not meet (touching along a segment or at a point)
   // A face plane of b that is a face plane of a too (same side: opposite sides separate) keeps a's bit.
-  for (int j = 0; j < 4; ++j)
-    for (int i = 0; i < 4; ++i)
-      if (sa[kFace[j][0]][i] == 0 && sa[kFace[j][1]][i] == 0 && sa[kFace[j][2]][i] == 0)
+  for (int i = 0; i < 4; ++i) {
+    const unsigned on_plane = 0xFu & ~(pos_a[i] | neg_a[i]);  // b's vertices on the plane of a's face i
+    if (__builtin_popcount(on_plane) < 3) continue;
+    for (int j = 0; j < 4; ++j)
+      if ((on_plane | 1u << j) == 0xFu)  // b's face j (its vertices but j) lies in that plane
         for (int k = 0; k < n; ++k) c[k].planes &= ~(1u << (4 + j));
+  }
   return assemble(c, n, normal);
 }
 
