@@ -173,7 +173,7 @@ Piece3 assemble(const Candidate* c, int n, Normal&& normal) {
       if (found != 0) nb[0] = __builtin_ctz(found);
       const unsigned rest = found & (found - 1);
       if (rest != 0) nb[1] = __builtin_ctz(rest);
-      return __builtin_popcount(found);
+      return (found != 0) + (rest != 0) + ((rest & (rest - 1)) != 0);  // how many, up to 3
     };
     int cycle[Piece3::kMaxVertices], length = 0;
     bool ok = true;
@@ -430,7 +430,8 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
   // A face plane of b that is a face plane of a too (same side: opposite sides separate) keeps a's bit.
   for (int i = 0; i < 4; ++i) {
     const unsigned on_plane = 0xFu & ~(pos_a[i] | neg_a[i]);  // b's vertices on the plane of a's face i
-    if (__builtin_popcount(on_plane) < 3) continue;
+    const unsigned one_cleared = on_plane & (on_plane - 1);  // its lowest bit cleared
+    if ((one_cleared & (one_cleared - 1)) == 0) continue;    // fewer than 3 of b's vertices on it
     for (int j = 0; j < 4; ++j)
       if ((on_plane | 1u << j) == 0xFu)  // b's face j (its vertices but j) lies in that plane
         for (int k = 0; k < n; ++k) c[k].planes &= ~(1u << (4 + j));
