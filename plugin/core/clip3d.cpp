@@ -42,10 +42,6 @@ struct StraddlingTable {
 };
 constexpr StraddlingTable kStraddling;
 
-// The pairs (edge e of one tetrahedron, face plane j of the other) where the edge crosses the plane strictly,
-// as bits 4 e + j (so that visiting the set bits upwards goes edge by edge, plane by plane), from the
-// vertices' sides: pos[j] and neg[j] the masks of the vertices strictly on the positive and negative side of
-// plane j.
 constexpr unsigned spread(unsigned edges) {  // bit e to bit 4 e
   unsigned out = 0;
   for (int e = 0; e < 6; ++e)
@@ -59,6 +55,11 @@ struct SpreadTable {
   }
 };
 constexpr SpreadTable kSpread;
+
+// The pairs (edge e of one tetrahedron, face plane j of the other) where the edge crosses the plane strictly,
+// as bits 4 e + j (so that visiting the set bits upwards goes edge by edge, plane by plane), from the
+// vertices' sides: pos[j] and neg[j] the masks of the vertices strictly on the positive and negative side of
+// plane j.
 inline unsigned crossing_pairs(const unsigned pos[4], const unsigned neg[4]) {
   unsigned pairs = 0;
   for (int j = 0; j < 4; ++j) pairs |= kSpread.bits[kStraddling.edges[pos[j]][neg[j]]] << j;
