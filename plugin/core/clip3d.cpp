@@ -23,38 +23,24 @@ constexpr int kFace[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
 inline unsigned faces_at_vertex(int i) { return 0xFu & ~(1u << i); }
 inline unsigned faces_at_edge(int k, int l) { return 0xFu & ~(1u << k) & ~(1u << l); }
 
-// kStraddling[pos][neg]: the edges (bit e, kEdge's order) whose ends lie strictly on either side of a plane,
-// from the masks of the vertices strictly on its positive and on its negative side.
+// kStraddling.pairs[pos][neg]: the edges e whose ends lie strictly on either side of a plane, as bits 4 e (the
+// layout of crossing_pairs below), from the masks of the vertices strictly on its positive and negative side.
 constexpr unsigned straddling(unsigned pos, unsigned neg) {
   unsigned edges = 0;
   for (int e = 0; e < 6; ++e) {
     const unsigned k = 1u << kEdge[e][0], l = 1u << kEdge[e][1];
-    if (((pos & k) && (neg & l)) || ((pos & l) && (neg & k))) edges |= 1u << e;
+    if (((pos & k) && (neg & l)) || ((pos & l) && (neg & k))) edges |= 1u << (4 * e);
   }
   return edges;
 }
 struct StraddlingTable {
-  unsigned char edges[16][16];
-  constexpr StraddlingTable() : edges() {
+  unsigned pairs[16][16];
+  constexpr StraddlingTable() : pairs() {
     for (unsigned pos = 0; pos < 16; ++pos)
-      for (unsigned neg = 0; neg < 16; ++neg) edges[pos][neg] = static_cast<unsigned char>(straddling(pos, neg));
+      for (unsigned neg = 0; neg < 16; ++neg) pairs[pos][neg] = straddling(pos, neg);
   }
 };
 constexpr StraddlingTable kStraddling;
-
-constexpr unsigned spread(unsigned edges) {  // bit e to bit 4 e
-  unsigned out = 0;
-  for (int e = 0; e < 6; ++e)
-    if (edges & (1u << e)) out |= 1u << (4 * e);
-  return out;
-}
-struct SpreadTable {
-  unsigned bits[64];
-  constexpr SpreadTable() : bits() {
-    for (unsigned edges = 0; edges < 64; ++edges) bits[edges] = spread(edges);
-  }
-};
-constexpr SpreadTable kSpread;
 
 // The pairs (edge e of one tetrahedron, face plane j of the other) where the edge crosses the plane strictly,
 // as bits 4 e + j (so that visiting the set bits upwards goes edge by edge, plane by plane), from the
@@ -62,7 +48,7 @@ constexpr SpreadTable kSpread;
 // plane j.
 inline unsigned crossing_pairs(const unsigned pos[4], const unsigned neg[4]) {
   unsigned pairs = 0;
-  for (int j = 0; j < 4; ++j) pairs |= kSpread.bits[kStraddling.edges[pos[j]][neg[j]]] << j;
+  for (int j = 0; j < 4; ++j) pairs |= kStraddling.pairs[pos[j]][neg[j]] << j;
   return pairs;
 }
 
