@@ -44,15 +44,31 @@ void PolynomialTerms3::set(int degree, const double* coef, std::size_t width) {
       add_polynomial(4 * f + 1 + i, &e[i * nm1], nm1);
     }
   }
+  // The monomial rows the sums read, with the rows they are formed from (monomial_parents3: a parent's
+  // index is below its child's); and the monomials of degree - 1 whose weighted sums the derivatives read.
+  std::vector<char> need(nm, 0), moment(std::max(nm1, 1), 0);
+  for (std::size_t slot = 0; slot < constant_.size(); ++slot)
+    for (int t = start_[slot]; t < start_[slot + 1]; ++t) {
+      need[monomial_[t]] = 1;
+      if (slot % 4 != 0) moment[monomial_[t]] = 1;
+    }
+  const auto& parents = monomial_parents3();
+  for (int m = nm - 1; m >= 4; --m)
+    if (need[m]) need[parents[m].parent] = 1;
+  rows_.clear();
+  for (int m = 4; m < nm; ++m)
+    if (need[m]) rows_.push_back(m);
+  moments_.assign(1, 0);
+  for (int m = 1; m < nm1; ++m)
+    if (moment[m]) moments_.push_back(m);
 }
 
 namespace {
 
 // mono[m * n + p] = monomial m at xi[p], row by row: monomial 0 is 1, the degree-1 rows the coordinates,
-// and each further one a row before it times one coordinate (monomial_parents3), so that every row is one
-// product along the points.
-void monomial_rows3(int degree, const Point3* xi, int n, double* mono) {
-  const int nm = monomial_count3(degree);
+// and each further one of `rows` (ascending, closed under parents) a row before it times one coordinate
+// (monomial_parents3), so that every row is one product along the points. The other rows are not formed.
+void monomial_rows3(int degree, const std::vector<int>& rows, const Point3* xi, int n, double* mono) {
   for (int p = 0; p < n; ++p) mono[p] = 1;
   if (degree == 0) return;
   double* x[3] = {mono + n, mono + 2 * static_cast<std::size_t>(n), mono + 3 * static_cast<std::size_t>(n)};
@@ -62,7 +78,7 @@ void monomial_rows3(int degree, const Point3* xi, int n, double* mono) {
     x[2][p] = xi[p].z;
   }
   const auto& parents = monomial_parents3();
-  for (int m = 4; m < nm; ++m) {
+  for (int m : rows) {
     const double* from = mono + static_cast<std::size_t>(parents[m].parent) * n;
     const double* factor = x[parents[m].axis];
     double* to = mono + static_cast<std::size_t>(m) * n;
@@ -98,7 +114,7 @@ void PolynomialTerms3::evaluate(const int* twin, const double* j, const Point3* 
   if (scratch.size() < static_cast<std::size_t>(nm) * n) scratch.resize(static_cast<std::size_t>(nm) * n);
   if (gradient && reference.size() < 3 * static_cast<std::size_t>(n)) reference.resize(3 * static_cast<std::size_t>(n));
   double* mono = scratch.data();
-  monomial_rows3(degree_, xi, n, mono);
+  monomial_rows3(degree_, rows_, xi, n, mono);
   auto sum = [&](std::size_t slot, double* out) {
     const int s = start_[slot], e = start_[slot + 1];
     sum_terms(constant_[slot], monomial_.data() + s, coefficient_.data() + s, e - s, mono, n, out);
@@ -127,9 +143,9 @@ void PolynomialTerms3::evaluate_gradient_sums(const int* twin, const double* j, 
   const std::size_t moments = static_cast<std::size_t>(std::max(nm1, 1));
   if (moment.size() < moments) moment.resize(moments);
   double* mono = scratch.data();
-  monomial_rows3(degree_, xi, n, mono);
-  // M_m for the monomials of degree - 1 (the first nm1 rows; M_0 = the sum of the weights)
-  for (std::size_t m = 0; m < moments; ++m) moment[m] = weighted_sum(weight, mono + m * n, n);
+  monomial_rows3(degree_, rows_, xi, n, mono);
+  // M_m for the monomials of degree - 1 that the derivatives read (M_0 = the sum of the weights)
+  for (int m : moments_) moment[m] = weighted_sum(weight, mono + static_cast<std::size_t>(m) * n, n);
   for (std::size_t f = 0; f < width_; ++f) {
     if (twin && twin[f] >= 0) continue;  // copied below
     const int s = start_[4 * f], e = start_[4 * f + 1];

@@ -41,6 +41,9 @@ class PolynomialTerms3 {
   std::vector<double> constant_;
   std::vector<int> start_, monomial_;
   std::vector<double> coefficient_;
+  // The monomial rows >= 4 that evaluate forms (those the terms read and their parents), ascending; the
+  // monomials whose weighted sums the derivatives read (0 first).
+  std::vector<int> rows_, moments_;
 };
 
 // The same for one call (the terms formed on the way): a fit used once.
