@@ -23,22 +23,37 @@ struct Piece3 {
   // floating-point ordering that replaces it otherwise is a guard, counted by the tests).
   bool exact = true;
 
-  // The pulling triangulation from vertex 0: f(v0, p, q, r) for each triangle (p, q, r) of the fans of
-  // the faces that do not contain vertex 0. The tetrahedra tile the piece; they are not oriented.
+  // The pulling triangulation from the apex (apex()): f(apex, p, q, r) for each triangle (p, q, r) of the
+  // fans of the faces that do not contain the apex. The tetrahedra tile the piece; they are not oriented.
   template <class F>
   void for_each_tetrahedron(F&& f) const {
     for_each_tetrahedron_index([&](int i, int j, int k, int l) { f(v[i], v[j], v[k], v[l]); });
   }
-  // The same tetrahedra as vertex indices (the first is always 0).
+  // The same tetrahedra as vertex indices (the first is always the apex).
   template <class F>
   void for_each_tetrahedron_index(F&& f) const {
+    const int a = apex();
     for (int k = 0; k < faces; ++k) {
       const int s = face_start[k], e = face_start[k + 1];
       bool has_apex = false;
-      for (int i = s; i < e; ++i) has_apex = has_apex || face_index[i] == 0;
+      for (int i = s; i < e; ++i) has_apex = has_apex || face_index[i] == a;
       if (has_apex) continue;
-      for (int i = s + 1; i + 1 < e; ++i) f(0, face_index[s], face_index[i], face_index[i + 1]);
+      for (int i = s + 1; i + 1 < e; ++i) f(a, face_index[s], face_index[i], face_index[i + 1]);
     }
+  }
+  // The vertex whose pulling triangulation has the fewest tetrahedra: sum over the faces f without it of
+  // (|f| - 2), i.e. 2 n - 4 (Euler) less sum over the faces f with it of (|f| - 2), maximized; the first such
+  // vertex.
+  int apex() const {
+    int score[kMaxVertices] = {0};
+    for (int k = 0; k < faces; ++k) {
+      const int s = face_start[k], e = face_start[k + 1];
+      for (int i = s; i < e; ++i) score[face_index[i]] += e - s - 2;
+    }
+    int best = 0;
+    for (int i = 1; i < n; ++i)
+      if (score[i] > score[best]) best = i;
+    return best;
   }
   // Sum of the pulling triangulation's |volumes| (each tetrahedron's is >= 0 exactly; round-off only).
   double volume() const {

@@ -19,7 +19,7 @@ struct Moments {
 
 Moments moments(const Piece3& piece) {
   Moments out;
-  const Point3 o = piece.v[0];
+  const Point3 o = piece.v[piece.apex()];  // the triangulation's apex: every tetrahedron's first corner
   double first[3] = {0, 0, 0}, second[3][3] = {};
   piece.for_each_tetrahedron([&](Point3, Point3 p, Point3 q, Point3 r) {
     const Point3 a = p - o, b = q - o, c = r - o, s = a + b + c;
