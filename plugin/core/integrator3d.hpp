@@ -5,7 +5,9 @@
 // quadrature method (quadrature_method3d.hpp) sums a rule with each point located in the fluid, the
 // exact method (exact_method3d.hpp) clips T's image against the fluid and hands each piece to a
 // PieceIntegrator3: point by point through either basis and either gradient product (integrate_points3d.hpp),
-// or from the piece's moments for bases of degree <= 1 on affine images (integrate_moments3d.hpp).
+// or, on affine images with the chain rule, from the piece's moments: its volume, centroid and second
+// moments for bases of degree <= 1 (integrate_moments3d.hpp), its monomial moments in the fluid element for
+// a fluid of higher degree and a multiplier of degree <= 1 (integrate_monomials3d.hpp).
 #pragma once
 #include <memory>
 
@@ -46,9 +48,11 @@ class PieceIntegrator3 {
 };
 using TetrahedronIntegrator = ElementIntegratorOf<MappedTet>;
 
-// The quadrature method (quadrature_method3d.hpp) when the options ask for it; otherwise the exact method with, for every piece, the point-by-point integrator, and for the
-// pieces of affine images the moments where both bases are fitted, of degree <= 1, and the product is the
-// chain rule's (or c1 = 0). search: the calling thread's search on the fluid side; counts: its report.
+// The quadrature method (quadrature_method3d.hpp) when the options ask for it; otherwise the exact method
+// with, for every piece, the point-by-point integrator and, for the pieces of affine images where both bases
+// are fitted and the product is the chain rule's (or c1 = 0), the moments when both are of degree <= 1, the
+// monomial moments when the fluid's is higher and the multiplier's <= 1. search: the calling thread's search
+// on the fluid side; counts: its report.
 std::unique_ptr<TetrahedronIntegrator> choose_integrator(const Integrand3& integrand, const FluidSide3& fluid,
                                                          FluidSearch3& search, const CouplingOptions& options,
                                                          CouplingReport3& counts);

@@ -27,17 +27,12 @@ Point3 lattice_point3(int d, int m) {
   return {static_cast<double>(a) / d, static_cast<double>(b) / d, static_cast<double>(c) / d};
 }
 
-namespace {
-
-// The index of the monomial with exponents (a, b, c).
 int monomial_index3(int a, int b, int c) {
   const int t = a + b + c;
   int m = t > 0 ? monomial_count3(t - 1) : 0;
   for (int cc = 0; cc < c; ++cc) m += t - cc + 1;
   return m + b;
 }
-
-}  // namespace
 
 const std::vector<MonomialParent3>& monomial_parents3() {
   static const auto table = [] {

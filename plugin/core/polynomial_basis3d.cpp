@@ -38,6 +38,7 @@ PolynomialBasis3::PolynomialBasis3(const Basis3& basis, const Mesh3& mesh, int d
   }
   twin_ = twin_functions(reference_, nm_);
   terms_.set(degree_, reference_.data(), functions_.size());
+  if (degree_ < kMaxLatticeDegree) terms_.prepare_moments();
   for (int k = 1; k < mesh.size(); ++k) check(k);
 }
 

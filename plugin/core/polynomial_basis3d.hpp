@@ -37,6 +37,17 @@ class PolynomialBasis3 {
   void evaluate_gradient_sums(int k, const Point3* xi, const double* weight, int n, double* value,
                               double* gradient_sum) const;
 
+  // Integrals from the monomial moments of a piece in element k's reference coordinates
+  // (PolynomialTerms3::prepare_moments, integrate): on the elements of the shared fit only.
+  bool integrates_moments(int k) const { return shared(k) && terms_.moments_prepared(); }
+  int moment_degree() const { return terms_.moment_degree(); }
+  void moments(const Point3* xi, const double* weight, int n, double* moment) const {
+    terms_.moments(xi, weight, n, moment);
+  }
+  void integrate_moments(int k, const double* moment, double* first, double* gradient_sum) const {
+    terms_.integrate(twin_.empty() ? nullptr : twin_.data(), inverse_jacobian(k), moment, first, gradient_sum);
+  }
+
   // Any basis (fitted or not): Basis3::evaluate's layout for the listed components.
   void evaluate(int k, Point3 xi, double* out) const;
 
@@ -47,6 +58,9 @@ class PolynomialBasis3 {
   Point3 to_reference(int k, Point3 x) const { return frames_.to_reference(k, x); }
   // d xi_i / d x_j of element k, row-major.
   const double* inverse_jacobian(int k) const { return frames_.inverse_jacobian(k); }
+  // The point of element k at reference coordinates xi; its edge i (d x / d xi_(i+1)).
+  Point3 from_reference(int k, Point3 xi) const { return frames_.from_reference(k, xi); }
+  Point3 edge(int k, int i) const { return frames_.edge(k, i); }
   // Does element k use the shared fit (that of element 0)?
   bool shared(int k) const { return slot_[k] < 0; }
   // On elements of the shared fit, function f equals function twin(f) (an earlier one, with the same

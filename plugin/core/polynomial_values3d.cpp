@@ -106,6 +106,68 @@ inline void sum_terms(double constant, const int* monomial, const double* coeffi
 
 }  // namespace
 
+void PolynomialTerms3::prepare_moments() {
+  const int d = degree_ + 1, nm = monomial_count3(d);
+  times_.assign(3 * monomial_.size(), 0);
+  std::vector<char> need(nm, 0);
+  for (int m = 0; m < 4; ++m) need[m] = 1;
+  for (std::size_t slot = 0; slot < constant_.size(); ++slot)
+    for (int t = start_[slot]; t < start_[slot + 1]; ++t) {
+      need[monomial_[t]] = 1;
+      if (slot % 4 != 0) continue;  // a derivative: its own monomial only
+      int a, b, c;
+      monomial_exponents3(monomial_[t], a, b, c);
+      const int times[3] = {monomial_index3(a + 1, b, c), monomial_index3(a, b + 1, c), monomial_index3(a, b, c + 1)};
+      for (int k = 0; k < 3; ++k) {
+        times_[3 * t + k] = times[k];
+        need[times[k]] = 1;
+      }
+    }
+  moment_list_.clear();
+  for (int m = 0; m < nm; ++m)
+    if (need[m]) moment_list_.push_back(m);
+  const auto& parents = monomial_parents3();
+  for (int m = nm - 1; m >= 4; --m)
+    if (need[m]) need[parents[m].parent] = 1;
+  moment_rows_.clear();
+  for (int m = 4; m < nm; ++m)
+    if (need[m]) moment_rows_.push_back(m);
+}
+
+void PolynomialTerms3::moments(const Point3* xi, const double* weight, int n, double* moment) const {
+  thread_local std::vector<double> scratch;
+  const std::size_t size = static_cast<std::size_t>(monomial_count3(degree_ + 1)) * n;
+  if (scratch.size() < size) scratch.resize(size);
+  double* mono = scratch.data();
+  monomial_rows3(degree_ + 1, moment_rows_, xi, n, mono);
+  for (int m : moment_list_) moment[m] = weighted_sum(weight, mono + static_cast<std::size_t>(m) * n, n);
+}
+
+void PolynomialTerms3::integrate(const int* twin, const double* j, const double* moment, double* first,
+                                 double* gradient_sum) const {
+  for (std::size_t f = 0; f < width_; ++f) {
+    if (twin && twin[f] >= 0) continue;  // copied below
+    const std::size_t value = 4 * f;
+    double* o = first + 4 * f;
+    for (int k = 0; k < 4; ++k) o[k] = constant_[value] * moment[k];  // monomials 1, xi1, xi2, xi3
+    for (int t = start_[value]; t < start_[value + 1]; ++t) {
+      const double c = coefficient_[t];
+      o[0] += c * moment[monomial_[t]];
+      for (int k = 0; k < 3; ++k) o[1 + k] += c * moment[times_[3 * t + k]];
+    }
+    double r[3];
+    for (int i = 0; i < 3; ++i) {
+      const std::size_t slot = value + 1 + i;
+      double sum = constant_[slot] * moment[0];
+      for (int t = start_[slot]; t < start_[slot + 1]; ++t) sum += coefficient_[t] * moment[monomial_[t]];
+      r[i] = sum;
+    }
+    for (int a = 0; a < 3; ++a) gradient_sum[3 * f + a] = r[0] * j[a] + r[1] * j[3 + a] + r[2] * j[6 + a];
+  }
+  copy_twins(twin, width_, 4, first);
+  copy_twins(twin, width_, 3, gradient_sum);
+}
+
 void PolynomialTerms3::evaluate(const int* twin, const double* j, const Point3* xi, int n, double* value,
                                 double* gradient) const {
   const int nm = monomial_count3(degree_);

@@ -32,6 +32,20 @@ class PolynomialTerms3 {
   void evaluate_gradient_sums(const int* twin, const double* j, const Point3* xi, const double* weight, int n,
                               double* value, double* gradient_sum) const;
 
+  // Integrals from moments (integrate_monomials3d.hpp). With M_m = sum_p weight[p] xi^m(p) for the monomials
+  // of degree <= degree + 1 (numbered as for that degree), a function's weighted sums are linear in the
+  // M_m: sum_p w phi = sum_t c_t M_(m_t), sum_p w xi_k phi = sum_t c_t M_(m_t xi_k), and the derivatives'
+  // sums read the M_m of degree - 1. prepare_moments (once, after set) lists the monomials read (0 to 3
+  // always: the volume and the centroid) and the rows that form them; moments forms those M_m from n points
+  // (the others are left as they are); integrate gives, per function f (twins copied),
+  //   first[4 f] = sum_p w phi_f, first[4 f + k] = sum_p w xi_k phi_f (k = 1, 2, 3),
+  //   gradient_sum[3 f + a] = sum_p w d phi_f / d x_a (through j = d xi / d x).
+  void prepare_moments();
+  bool moments_prepared() const { return !moment_list_.empty(); }
+  int moment_degree() const { return degree_ + 1; }
+  void moments(const Point3* xi, const double* weight, int n, double* moment) const;
+  void integrate(const int* twin, const double* j, const double* moment, double* first, double* gradient_sum) const;
+
  private:
   int degree_ = 0;
   std::size_t width_ = 0;
@@ -44,6 +58,9 @@ class PolynomialTerms3 {
   // The monomial rows >= 4 that evaluate forms (those the terms read and their parents), ascending; the
   // monomials whose weighted sums the derivatives read (0 first).
   std::vector<int> rows_, moments_;
+  // For moments (prepare_moments): the rows >= 4 formed and the monomials whose M_m are read, in the
+  // numbering of degree + 1; times_[3 t + k]: monomial_[t] times xi_(k+1) in that numbering.
+  std::vector<int> moment_rows_, moment_list_, times_;
 };
 
 // The same for one call (the terms formed on the way): a fit used once.

@@ -20,6 +20,13 @@ class TetFrames3 {
   }
   // d xi_i / d x_j of element k, row-major.
   const double* inverse_jacobian(int k) const { return &inverse_jacobian_[9 * static_cast<size_t>(k)]; }
+  // The point of element k at reference coordinates xi.
+  Point3 from_reference(int k, Point3 xi) const {
+    const Point3 p0 = mesh_.vertex(k, 0);
+    return p0 + (xi.x * (mesh_.vertex(k, 1) - p0) + xi.y * (mesh_.vertex(k, 2) - p0) + xi.z * (mesh_.vertex(k, 3) - p0));
+  }
+  // Edge i (= d x / d xi_(i+1)) of element k: corner i + 1 less corner 0.
+  Point3 edge(int k, int i) const { return mesh_.vertex(k, i + 1) - mesh_.vertex(k, 0); }
 
  private:
   const Mesh3& mesh_;

@@ -4,6 +4,7 @@
 // independently; bad input as errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -90,6 +91,31 @@ std::vector<double> interpolate(const Space& space, const Field& f) {
   return v;
 }
 
+// P2 with the edge dofs listed in reverse on odd tetrahedra: the same space, but those elements' local
+// functions differ from element 0's, so they do not share its fit (PolynomialBasis3::shared) and take the
+// integrators' own-fit paths.
+class P2TetReversedOnOdd : public Basis3 {
+ public:
+  explicit P2TetReversedOnOdd(const Mesh3& m) : p2_(m) {}
+  int components() const override { return 1; }
+  int dof_count() const override { return p2_.dof_count(); }
+  int local_dofs() const override { return 10; }
+  void component_dofs(int c, int& f, int& l) const override { p2_.component_dofs(c, f, l); }
+  void dofs(int k, int* g) const override {
+    p2_.dofs(k, g);
+    if (k % 2) std::reverse(g + 4, g + 10);
+  }
+  void evaluate(int k, Point3 xi, double* out) const override {
+    p2_.evaluate(k, xi, out);
+    if (k % 2)
+      for (int i = 0; i < 3; ++i) std::swap_ranges(out + 4 * (4 + i), out + 4 * (5 + i), out + 4 * (9 - i));
+  }
+  Point3 node(int dof) const { return p2_.node(dof); }
+
+ private:
+  P2Tet p2_;
+};
+
 }  // namespace
 
 TEST(Coupling3d, VolumeOnFluidMeshesContainingTheSolidBoundary) {
@@ -131,19 +157,20 @@ TEST(Coupling3d, PolynomialExactnessUnderRotatedShearedMaps) {
   const Gradient gl1 = [](Point3) { return Point3{-1, 0.5, 0.25}; };
   const P1Tet fp1(fluid), sp1(solid);
   const P2Tet fp2(fluid), sp2(solid);
+  const P2TetReversedOnOdd fp2_own(fluid);
   struct Case {
     const char* name;
-    bool fluid_p2, solid_p2;
+    bool fluid_p2, solid_p2, own_fits = false;
   };
   for (const Case& c : {Case{"P1 x P1", false, false}, Case{"P2 x P1", true, false}, Case{"P1 x P2", false, true},
-                        Case{"P2 x P2", true, true}}) {
+                        Case{"P2 x P2", true, true}, Case{"P2 (own fits on odd elements) x P1", true, false, true}}) {
     const Field& u = c.fluid_p2 ? u2 : u1;
     const Gradient& gu = c.fluid_p2 ? gu2 : gu1;
     const Field& l = c.solid_p2 ? l2 : l1;
     const Gradient& gl = c.solid_p2 ? gl2 : gl1;
     const std::vector<double> uv = c.fluid_p2 ? interpolate(fp2, u) : interpolate(fp1, u);
     const std::vector<double> lv = c.solid_p2 ? interpolate(sp2, l) : interpolate(sp1, l);
-    const Basis3& fs = c.fluid_p2 ? static_cast<const Basis3&>(fp2) : fp1;
+    const Basis3& fs = c.own_fits ? static_cast<const Basis3&>(fp2_own) : c.fluid_p2 ? static_cast<const Basis3&>(fp2) : fp1;
     const Basis3& ss = c.solid_p2 ? static_cast<const Basis3&>(sp2) : sp1;
     for (double c1 : {0.0, 1.0}) {
       CouplingReport3 report;
