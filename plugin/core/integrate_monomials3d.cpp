@@ -29,19 +29,21 @@ double MonomialIntegrator3::integrate(const ClippedImage3& image, int kf, const 
   const auto& rule = tetrahedron_rule(fluid.moment_degree());
   Point3 eta_corner[Piece3::kMaxVertices];
   for (int v = 0; v < piece.n; ++v) eta_corner[v] = fluid.to_reference(kf, piece.v[v]);
-  eta_.clear();
-  weight_.clear();
+  int n = 0;
   double volume = 0;
   piece.for_each_tetrahedron_index([&](int i0, int i1, int i2, int i3) {
     const double vol = std::fabs(volume6(piece.v[i0], piece.v[i1], piece.v[i2], piece.v[i3])) / 6;
     volume += vol;
     const Point3 tet[4] = {eta_corner[i0], eta_corner[i1], eta_corner[i2], eta_corner[i3]};
+    if (eta_.size() < static_cast<size_t>(n) + rule.size()) {
+      eta_.resize(n + rule.size());
+      weight_.resize(n + rule.size());
+    }
     for (const RulePoint3& rp : rule) {
-      eta_.push_back(from_reference(tet, rp.xi));
-      weight_.push_back(vol * rp.weight);
+      eta_[n] = from_reference(tet, rp.xi);
+      weight_[n++] = vol * rp.weight;
     }
   });
-  const int n = static_cast<int>(eta_.size());
   counts_.points += n;
   if (!(volume > 0)) return volume;
   fluid.moments(eta_.data(), weight_.data(), n, moment_.data());
@@ -63,26 +65,24 @@ double MonomialIntegrator3::integrate(const ClippedImage3& image, int kf, const 
     for (int k = 0; k < 3; ++k) q_[3 * s + k] = dot(gs, ds[k]);
   }
   const ComponentPairs& pairs = integrand_.pairs;
-  const bool gradients = integrand_.c1 != 0;
   for (size_t p = 0; p < pairs.size(); ++p) {
     const ComponentPair& pair = pairs[p];
     for (size_t a = 0; a < pair.fluid_functions.size(); ++a) {
       const int f = pair.fluid_functions[a];
       const double* o = &first_[4 * static_cast<size_t>(f)];
-      const double A = o[0];
-      const double B[3] = {o[1] - eta_c.x * A, o[2] - eta_c.y * A, o[3] - eta_c.z * A};
-      // J^T int grad_y phi: the gradient term's fluid side
+      // the sums scaled by c2 / det and c1 / det once for all the multiplier functions
+      const double A = mass * o[0];
+      const double B[3] = {mass * o[1] - eta_c.x * A, mass * o[2] - eta_c.y * A, mass * o[3] - eta_c.z * A};
+      // c1 / det J^T int grad_y phi: the gradient term's fluid side
       const double* g = &gradient_sum_[3 * static_cast<size_t>(f)];
       double jg[3];
-      for (int b = 0; b < 3; ++b) jg[b] = g[0] * j[0][b] + g[1] * j[1][b] + g[2] * j[2][b];
+      for (int b = 0; b < 3; ++b) jg[b] = stiff * (g[0] * j[0][b] + g[1] * j[1][b] + g[2] * j[2][b]);
       double* col = block.column(pair.fluid_first + static_cast<int>(a)) + pair.solid_first;
       for (size_t b = 0; b < pair.solid_functions.size(); ++b) {
         const int s = pair.solid_functions[b];
         const double* gs = &gradient_[3 * static_cast<size_t>(s)];
         const double* q = &q_[3 * static_cast<size_t>(s)];
-        double sum = mass * (value_[s] * A + q[0] * B[0] + q[1] * B[1] + q[2] * B[2]);
-        if (gradients) sum += stiff * (gs[0] * jg[0] + gs[1] * jg[1] + gs[2] * jg[2]);
-        col[b] += sum;
+        col[b] += value_[s] * A + q[0] * B[0] + q[1] * B[1] + q[2] * B[2] + gs[0] * jg[0] + gs[1] * jg[1] + gs[2] * jg[2];
       }
     }
   }
