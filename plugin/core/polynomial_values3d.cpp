@@ -8,6 +8,22 @@
 
 namespace dlmfsi {
 
+namespace {
+
+// The rows >= 4 to form so that the rows marked in need are formed (need closed under monomial_parents3: a
+// parent's index is below its child's; need is changed), ascending.
+std::vector<int> rows_with_parents(std::vector<char>& need) {
+  const auto& parents = monomial_parents3();
+  for (int m = static_cast<int>(need.size()) - 1; m >= 4; --m)
+    if (need[m]) need[parents[m].parent] = 1;
+  std::vector<int> rows;
+  for (int m = 4; m < static_cast<int>(need.size()); ++m)
+    if (need[m]) rows.push_back(m);
+  return rows;
+}
+
+}  // namespace
+
 void PolynomialTerms3::set(int degree, const double* coef, std::size_t width) {
   degree_ = degree;
   width_ = width;
@@ -44,20 +60,15 @@ void PolynomialTerms3::set(int degree, const double* coef, std::size_t width) {
       add_polynomial(4 * f + 1 + i, &e[i * nm1], nm1);
     }
   }
-  // The monomial rows the sums read, with the rows they are formed from (monomial_parents3: a parent's
-  // index is below its child's); and the monomials of degree - 1 whose weighted sums the derivatives read.
+  // The monomial rows the sums read, with the rows they are formed from; and the monomials of degree - 1
+  // whose weighted sums the derivatives read.
   std::vector<char> need(nm, 0), moment(std::max(nm1, 1), 0);
   for (std::size_t slot = 0; slot < constant_.size(); ++slot)
     for (int t = start_[slot]; t < start_[slot + 1]; ++t) {
       need[monomial_[t]] = 1;
       if (slot % 4 != 0) moment[monomial_[t]] = 1;
     }
-  const auto& parents = monomial_parents3();
-  for (int m = nm - 1; m >= 4; --m)
-    if (need[m]) need[parents[m].parent] = 1;
-  rows_.clear();
-  for (int m = 4; m < nm; ++m)
-    if (need[m]) rows_.push_back(m);
+  rows_ = rows_with_parents(need);
   moments_.assign(1, 0);
   for (int m = 1; m < nm1; ++m)
     if (moment[m]) moments_.push_back(m);
@@ -126,12 +137,7 @@ void PolynomialTerms3::prepare_moments() {
   moment_list_.clear();
   for (int m = 0; m < nm; ++m)
     if (need[m]) moment_list_.push_back(m);
-  const auto& parents = monomial_parents3();
-  for (int m = nm - 1; m >= 4; --m)
-    if (need[m]) need[parents[m].parent] = 1;
-  moment_rows_.clear();
-  for (int m = 4; m < nm; ++m)
-    if (need[m]) moment_rows_.push_back(m);
+  moment_rows_ = rows_with_parents(need);
 }
 
 void PolynomialTerms3::moments(const Point3* xi, const double* weight, int n, double* moment) const {
