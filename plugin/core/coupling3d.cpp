@@ -135,6 +135,21 @@ void check_options(const Basis3& fluid_space, const Basis3& multiplier, const Co
 const Mesh3& checked(const Mesh3& mesh) {
   if (mesh.size() == 0) throw Error("empty fluid mesh");
   if (static_cast<int>(mesh.neighbours.size()) != mesh.size()) throw Error("fluid mesh adjacency not built");
+  // Volumes (h^3) and the reference frames' inverse jacobians (1/h) stay normal numbers.
+  for (int k = 0; k < mesh.size(); ++k) {
+    Point3 p[4];
+    mesh.corners(k, p);
+    const double det = std::fabs(volume6(p[0], p[1], p[2], p[3]));
+    if (orient3d(p[0], p[1], p[2], p[3]) == 0) throw Error("fluid tetrahedron " + std::to_string(k) + " is flat");
+    if (det < 0x1p-1000 || det > 0x1p1000) {
+      char s[160];
+      std::snprintf(s, sizeof s,
+                    " is too small or too large (volume %.3g in doubles): fluid tetrahedra from about 1e-100 to"
+                    " 1e100 in size are supported",
+                    det / 6);
+      throw Error("fluid tetrahedron " + std::to_string(k) + s);
+    }
+  }
   return mesh;
 }
 
@@ -219,6 +234,7 @@ const CsrMatrix& CouplingAssembly3::assemble(const FluidSide3& fluid, const Soli
   // build reads the first `threads` lists (in thread order: the sums of compress's order for any count)
   if (static_cast<int>(triplets_.size()) > threads) triplets_.resize(threads);
   const CsrMatrix& m = matrix_.build(solid.space().dof_count(), fluid.space().dof_count(), triplets_);
+  check_finite(m, opt);
   total.seconds = since();
   if (report) *report = total;
   return m;

@@ -1,5 +1,6 @@
 #include "integrate_moments3d.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "coupling3d.hpp"
@@ -9,23 +10,38 @@ namespace dlmfsi {
 namespace {
 
 // Volume, centroid and central second moments M = int_P (y - c)(y - c)^T dy of a piece, from its
-// tetrahedra: with vertices 0, a, b, c relative to the piece's first vertex, a tetrahedron of volume V has
+// tetrahedra: with vertices 0, a, b, c relative to the piece's apex, a tetrahedron of volume V has
 // int y = V (a + b + c) / 4 and int y y^T = V / 20 (a a^T + b b^T + c c^T + s s^T), s = a + b + c.
+// The vectors are taken in units of 2^e, about the piece's size (scale: 2^e, scaling exact), so that the
+// first and second moments are V times numbers near 1 (in the caller's units they would be V h and V h^2:
+// outside the doubles for pieces beyond about 1e-60..1e60 in size); m holds M / 2^(2 e).
 struct Moments {
   double volume = 0;
   Point3 centroid;
+  double scale = 1;
   double m[3][3] = {};
 };
 
 Moments moments(const Piece3& piece) {
   Moments out;
   const Point3 o = piece.v[piece.apex()];  // the triangulation's apex: every tetrahedron's first corner
+  double size = 0;
+  for (int k = 0; k < piece.n; ++k) {
+    const Point3 d = piece.v[k] - o;
+    size = std::max({size, std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)});
+  }
+  int e = 0;
+  if (size > 0 && std::isfinite(size)) std::frexp(size, &e);
+  out.scale = std::ldexp(1.0, e);
+  const double shrink = std::ldexp(1.0, -e);
   double first[3] = {0, 0, 0}, second[3][3] = {};
   piece.for_each_tetrahedron([&](Point3, Point3 p, Point3 q, Point3 r) {
-    const Point3 a = p - o, b = q - o, c = r - o, s = a + b + c;
+    const Point3 a = p - o, b = q - o, c = r - o;
     const double v = std::fabs(dot(a, cross(b, c))) / 6;
     out.volume += v;
-    const double sv[3] = {s.x, s.y, s.z}, av[3] = {a.x, a.y, a.z}, bv[3] = {b.x, b.y, b.z}, cv[3] = {c.x, c.y, c.z};
+    const Point3 as = shrink * a, bs = shrink * b, cs = shrink * c, s = as + bs + cs;
+    const double sv[3] = {s.x, s.y, s.z}, av[3] = {as.x, as.y, as.z}, bv[3] = {bs.x, bs.y, bs.z},
+                 cv[3] = {cs.x, cs.y, cs.z};
     for (int i = 0; i < 3; ++i) {
       first[i] += v * sv[i] / 4;
       for (int j = 0; j < 3; ++j) second[i][j] += v / 20 * (av[i] * av[j] + bv[i] * bv[j] + cv[i] * cv[j] + sv[i] * sv[j]);
@@ -33,7 +49,7 @@ Moments moments(const Piece3& piece) {
   });
   if (!(out.volume > 0)) return out;
   const double c[3] = {first[0] / out.volume, first[1] / out.volume, first[2] / out.volume};
-  out.centroid = o + Point3{c[0], c[1], c[2]};
+  out.centroid = o + out.scale * Point3{c[0], c[1], c[2]};
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) out.m[i][j] = second[i][j] - out.volume * c[i] * c[j];
   return out;
@@ -62,21 +78,22 @@ double MomentIntegrator3::integrate(const ClippedImage3& image, int kf, const Pi
   integrand_.multiplier.evaluate_affine(mt.k, mt.affine_reference(mo.centroid), sv, sg);
   const double(&j)[3][3] = mt.affine_value.jac;
   const double det = mt.affine_det, mass = integrand_.c2 / det, stiff = integrand_.c1 * mo.volume / det;
-  // per multiplier function: its gradient in y, J^-T grad_s psi (J^-T = cofactor matrix / det)
+  // per multiplier function: its gradient in y, J^-T grad_s psi (J^-T = cofactor matrix / det), times 2^e
   double sy[3 * kMaxFunctions];
   const double cof[3][3] = {{j[1][1] * j[2][2] - j[1][2] * j[2][1], j[1][2] * j[2][0] - j[1][0] * j[2][2], j[1][0] * j[2][1] - j[1][1] * j[2][0]},
                             {j[0][2] * j[2][1] - j[0][1] * j[2][2], j[0][0] * j[2][2] - j[0][2] * j[2][0], j[0][1] * j[2][0] - j[0][0] * j[2][1]},
                             {j[0][1] * j[1][2] - j[0][2] * j[1][1], j[0][2] * j[1][0] - j[0][0] * j[1][2], j[0][0] * j[1][1] - j[0][1] * j[1][0]}};
   for (int f = 0; f < multiplier_functions_; ++f)
     for (int a = 0; a < 3; ++a)  // (J^-T g)_a = sum_b (J^-1)_ba g_b, J^-1 = cof^T / det
-      sy[3 * f + a] = (cof[a][0] * sg[3 * f] + cof[a][1] * sg[3 * f + 1] + cof[a][2] * sg[3 * f + 2]) / det;
-  // per fluid function: c2/det (V phi(c), M grad phi) and c1 V / det J^T grad phi
+      sy[3 * f + a] = (cof[a][0] * sg[3 * f] + cof[a][1] * sg[3 * f + 1] + cof[a][2] * sg[3 * f + 2]) / det * mo.scale;
+  // per fluid function: c2/det (V phi(c), M grad phi / 2^e) and c1 V / det J^T grad phi (the 2^e of the moments'
+  // units cancel in the products with sy, each factor a double at any size)
   double fa[kMaxFunctions], fm[3 * kMaxFunctions], fc[3 * kMaxFunctions];
   for (int f = 0; f < fluid_functions_; ++f) {
     const double* g = fg + 3 * f;
     fa[f] = mass * mo.volume * fv[f];
     for (int a = 0; a < 3; ++a) {
-      fm[3 * f + a] = mass * (mo.m[a][0] * g[0] + mo.m[a][1] * g[1] + mo.m[a][2] * g[2]);
+      fm[3 * f + a] = mass * (mo.m[a][0] * g[0] + mo.m[a][1] * g[1] + mo.m[a][2] * g[2]) * mo.scale;
       fc[3 * f + a] = stiff * (g[0] * j[0][a] + g[1] * j[1][a] + g[2] * j[2][a]);
     }
   }
