@@ -141,14 +141,7 @@ const Mesh3& checked(const Mesh3& mesh) {
     mesh.corners(k, p);
     const double det = std::fabs(volume6(p[0], p[1], p[2], p[3]));
     if (orient3d(p[0], p[1], p[2], p[3]) == 0) throw Error("fluid tetrahedron " + std::to_string(k) + " is flat");
-    if (det < 0x1p-1000 || det > 0x1p1000) {
-      char s[160];
-      std::snprintf(s, sizeof s,
-                    " is too small or too large (volume %.3g in doubles): fluid tetrahedra from about 1e-100 to"
-                    " 1e100 in size are supported",
-                    det / 6);
-      throw Error("fluid tetrahedron " + std::to_string(k) + s);
-    }
+    check_tetrahedron_size(det, "fluid tetrahedron " + std::to_string(k), "fluid");
   }
   return mesh;
 }

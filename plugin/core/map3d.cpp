@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -92,15 +91,7 @@ void MappedTet::prepare(const Mesh3& solid_mesh, const SolidMap3& map, int kk) {
   if (orient3d(solid[0], solid[1], solid[2], solid[3]) <= 0)
     throw Error(name(k) + " is flat or negatively oriented in the solid mesh");
   const double det = dot(e1, cross(e2, e3));
-  // Volumes (h^3) and their products with the multiplier's gradients (1/h each) stay normal numbers.
-  if (det < 0x1p-1000 || det > 0x1p1000) {
-    char s[160];
-    std::snprintf(s, sizeof s,
-                  " is too small or too large (volume %.3g in doubles): solid tetrahedra from about 1e-100 to"
-                  " 1e100 in size are supported",
-                  det / 6);
-    throw Error(name(k) + s);
-  }
+  check_tetrahedron_size(det, name(k), "solid");
   inverse_of_columns(e1, e2, e3, inv_);
 
   degree_ = map.degree();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <tuple>
 
@@ -88,6 +89,16 @@ std::vector<int> morton_order(const Mesh3& mesh) {
 
 Mesh3 renumbered(const Mesh3& mesh, const std::vector<int>& order) {
   return renumbered_elements(mesh, order, &Mesh3::tetrahedra);
+}
+
+void check_tetrahedron_size(double det, const std::string& who, const char* side) {
+  if (det >= 0x1p-1000 && det <= 0x1p1000) return;
+  char s[160];
+  std::snprintf(s, sizeof s,
+                " is too small or too large (volume %.3g in doubles): %s tetrahedra from about 1e-100 to 1e100 in"
+                " size are supported",
+                det / 6, side);
+  throw Error(who + s);
 }
 
 }  // namespace dlmfsi

@@ -1,6 +1,7 @@
 // A tetrahedral mesh as plain arrays, with face adjacency.
 #pragma once
 #include <array>
+#include <string>
 #include <vector>
 
 #include "point3.hpp"
@@ -47,5 +48,10 @@ inline Point3 to_reference(const Point3 p[4], Point3 x) {
   const double det = dot(e1, cross(e2, e3));
   return {dot(d, cross(e2, e3)) / det, dot(e1, cross(d, e3)) / det, dot(e1, cross(e2, d)) / det};
 }
+
+// Throws unless det = 6 |volume| of a tetrahedron lies within 2^-1000 .. 2^1000 (tetrahedra from about
+// 1e-100 to 1e100 in size, whose volumes h^3 and their products with gradients 1/h stay normal numbers).
+// who names the tetrahedron ("fluid tetrahedron 3"), side its mesh ("fluid").
+void check_tetrahedron_size(double det, const std::string& who, const char* side);
 
 }  // namespace dlmfsi
