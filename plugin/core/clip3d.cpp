@@ -52,6 +52,12 @@ inline unsigned crossing_pairs(const unsigned pos[4], const unsigned neg[4]) {
   return pairs;
 }
 
+// The side (+1, 0, -1) of vertex v of a plane, from the masks of the vertices strictly on its positive and
+// negative side.
+inline int side_in(unsigned pos, unsigned neg, int v) {
+  return static_cast<int>(pos >> v & 1u) - static_cast<int>(neg >> v & 1u);
+}
+
 // kPermutationSign[c][o]: the sign of the permutation (c, o, u, v) of (0, 1, 2, 3), u < v the other two.
 constexpr int kPermutationSign[4][4] = {{0, 1, -1, 1}, {-1, 0, 1, -1}, {1, -1, 0, 1}, {-1, 1, -1, 0}};
 
@@ -308,17 +314,15 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
     }
     return out;
   };
-  // sb[i][j]: side of a[i] with respect to b's face j; sa[j][i] likewise.
   // pos_b[j], neg_b[j]: the vertices of a strictly on the inner, outer side of b's face j (bit i); pos_a,
-  // neg_a the same for b's vertices and a's faces.
-  int sb[4][4], sa[4][4];
+  // neg_a the same for b's vertices and a's faces (side_in reads a vertex's side from them).
   unsigned pos_b[4], neg_b[4], pos_a[4], neg_a[4];
   for (int j = 0; j < 4; ++j) {
     pos_b[j] = neg_b[j] = 0;
     for (int i = 0; i < 4; ++i) {
-      sb[i][j] = b_faces.side(j, a[i]);
-      if (sb[i][j] > 0) pos_b[j] |= 1u << i;
-      if (sb[i][j] < 0) neg_b[j] |= 1u << i;
+      const int side = b_faces.side(j, a[i]);
+      if (side > 0) pos_b[j] |= 1u << i;
+      if (side < 0) neg_b[j] |= 1u << i;
     }
     if (pos_b[j] == 0) return Piece3{};  // face j's plane separates
     if (neg_b[j] != 0) beyond |= 1u << j;
@@ -328,9 +332,9 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
   for (int i = 0; i < 4; ++i) {
     pos_a[i] = neg_a[i] = 0;
     for (int j = 0; j < 4; ++j) {
-      sa[j][i] = a_faces.side(i, b[j]);
-      if (sa[j][i] > 0) pos_a[i] |= 1u << j;
-      if (sa[j][i] < 0) neg_a[i] |= 1u << j;
+      const int side = a_faces.side(i, b[j]);
+      if (side > 0) pos_a[i] |= 1u << j;
+      if (side < 0) neg_a[i] |= 1u << j;
     }
     if (pos_a[i] == 0) return Piece3{};
     if (neg_a[i] != 0) b_inside = false;
@@ -341,20 +345,22 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
     if (n < 32) c[n++] = {p.x, p.y, p.z, planes};
   };
   // Vertices of a in closed b: on a's three faces at the vertex and on b's faces where the side is 0.
+  const unsigned a_outside = neg_b[0] | neg_b[1] | neg_b[2] | neg_b[3];
   for (int i = 0; i < 4; ++i) {
-    if (sb[i][0] < 0 || sb[i][1] < 0 || sb[i][2] < 0 || sb[i][3] < 0) continue;
+    if (a_outside >> i & 1u) continue;
     unsigned planes = faces_at_vertex(i);
     for (int j = 0; j < 4; ++j)
-      if (sb[i][j] == 0) planes |= 1u << (4 + j);
+      if (!((pos_b[j] | neg_b[j]) >> i & 1u)) planes |= 1u << (4 + j);
     add(a[i], planes);
   }
   // Vertices of b in closed a that are not vertices of a.
+  const unsigned b_outside = neg_a[0] | neg_a[1] | neg_a[2] | neg_a[3];
   for (int j = 0; j < 4; ++j) {
-    if (sa[j][0] < 0 || sa[j][1] < 0 || sa[j][2] < 0 || sa[j][3] < 0) continue;
+    if (b_outside >> j & 1u) continue;
     if (b[j] == a[0] || b[j] == a[1] || b[j] == a[2] || b[j] == a[3]) continue;
     unsigned planes = faces_at_vertex(j) << 4;
     for (int i = 0; i < 4; ++i)
-      if (sa[j][i] == 0) planes |= 1u << i;
+      if (!((pos_a[i] | neg_a[i]) >> j & 1u)) planes |= 1u << i;
     add(b[j], planes);
   }
   // The orientations of a's edge lines against b's: edge(ea) of a, edge(eb) of b,
@@ -382,7 +388,8 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
     bool inside = true;
     for (int z = 0; z < 3 && inside; ++z) {
       const int o = opposite[z];
-      const int side = crossing_side(sb[p][o], sb[q][o], sb[p][j], kPermutationSign[j][o],
+      const int side = crossing_side(side_in(pos_b[o], neg_b[o], p), side_in(pos_b[o], neg_b[o], q),
+                                     side_in(pos_b[j], neg_b[j], p), kPermutationSign[j][o],
                                      [&] { return orientation(ea, eb[z]); });
       if (side < 0) inside = false;
       if (side == 0) ++zeros, zero = z;
@@ -408,7 +415,8 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
     bool inside = true;
     for (int z = 0; z < 3 && inside; ++z) {
       const int o = opposite[z];
-      inside = crossing_side(sa[x][o], sa[y][o], sa[x][i], kPermutationSign[i][o],
+      inside = crossing_side(side_in(pos_a[o], neg_a[o], x), side_in(pos_a[o], neg_a[o], y),
+                             side_in(pos_a[i], neg_a[i], x), kPermutationSign[i][o],
                              [&] { return orientation(ea[z], eb); }) > 0;
     }
     if (inside) add(crossing(b[x], b[y], a[k], a[l], a[m]), faces_at_edge(x, y) << 4 | 1u << i);
