@@ -32,7 +32,11 @@ struct Piece3 {
   // The same tetrahedra as vertex indices (the first is always the apex).
   template <class F>
   void for_each_tetrahedron_index(F&& f) const {
-    const int a = apex();
+    for_each_tetrahedron_from(apex(), f);
+  }
+  // The pulling triangulation from vertex a, as vertex indices (a caller that has apex() already).
+  template <class F>
+  void for_each_tetrahedron_from(int a, F&& f) const {
     for (int k = 0; k < faces; ++k) {
       const int s = face_start[k], e = face_start[k + 1];
       bool has_apex = false;

@@ -24,7 +24,8 @@ struct Moments {
 
 Moments moments(const Piece3& piece) {
   Moments out;
-  const Point3 o = piece.v[piece.apex()];  // the triangulation's apex: every tetrahedron's first corner
+  const int apex = piece.apex();  // the triangulation's: every tetrahedron's first corner
+  const Point3 o = piece.v[apex];
   double size = 0;
   for (int k = 0; k < piece.n; ++k) {
     const Point3 d = piece.v[k] - o;
@@ -35,8 +36,8 @@ Moments moments(const Piece3& piece) {
   out.scale = std::ldexp(1.0, e);
   const double shrink = std::ldexp(1.0, -e);
   double first[3] = {0, 0, 0}, second[3][3] = {};
-  piece.for_each_tetrahedron([&](Point3, Point3 p, Point3 q, Point3 r) {
-    const Point3 a = p - o, b = q - o, c = r - o;
+  piece.for_each_tetrahedron_from(apex, [&](int, int ip, int iq, int ir) {
+    const Point3 a = piece.v[ip] - o, b = piece.v[iq] - o, c = piece.v[ir] - o;
     const double v = std::fabs(dot(a, cross(b, c))) / 6;
     out.volume += v;
     const Point3 as = shrink * a, bs = shrink * b, cs = shrink * c, s = as + bs + cs;
