@@ -237,16 +237,16 @@ Point3 crossing(Point3 p, Point3 q, Point3 x, Point3 y, Point3 z) {
   sort3(x, y, z);
   // The signed volumes vp = det [y - x, z - x, p - x] and vq have opposite signs, so vp - vq does not
   // cancel; t = vp / (vp - vq) is accurate when both are. Each is evaluated in floating point with its
-  // error bound, exactly when the bounds exceed 2^-44 of |vp| + |vq| (an edge nearly parallel to the
-  // plane, a thin face), on coordinates scaled near 1 (exact) so that nothing underflows.
+  // error bound, on coordinates scaled near 1 so that nothing overflows; exactly when the bounds exceed
+  // 2^-44 of |vp| + |vq| (an edge nearly parallel to the plane, a thin face, tiny differences), on the
+  // coordinates themselves (the scaling rounds subnormal ones) and in units of the larger, however far
+  // below the doubles the two lie.
   const double k = unit_scale({p, q, x, y, z});
   const Point3 sp = k * p, sq = k * q, sx = k * x, sy = k * y, sz = k * z;
   double bp, bq;
   double vp = orient3d_estimate(sx, sy, sz, sp, bp), vq = orient3d_estimate(sx, sy, sz, sq, bq);
-  if (!(bp + bq <= 0x1p-44 * (std::fabs(vp) + std::fabs(vq)))) {
-    vp = orient3d_value(sx, sy, sz, sp);
-    vq = orient3d_value(sx, sy, sz, sq);
-  }
+  if (!(bp + bq <= 0x1p-44 * (std::fabs(vp) + std::fabs(vq))))
+    to_common_scale(orient3d_value(x, y, z, p), orient3d_value(x, y, z, q), vp, vq);
   // The crossing lies on the segment and in the face: the boxes' intersection bounds it.
   Box box;
   box.meet({p, q});
@@ -273,10 +273,8 @@ Point3 crossing(Point3 p, Point3 q, Point3 r, Point3 s) {
   auto drop = [axis](Point3 v) { return axis == 0 ? Point{v.y, v.z} : axis == 1 ? Point{v.z, v.x} : Point{v.x, v.y}; };
   double bp, bq;
   double op = orient2d_estimate(drop(sr), drop(ss), drop(sp), bp), oq = orient2d_estimate(drop(sr), drop(ss), drop(sq), bq);
-  if (!(bp + bq <= 0x1p-44 * (std::fabs(op) + std::fabs(oq)))) {
-    op = orient2d_value(drop(sr), drop(ss), drop(sp));
-    oq = orient2d_value(drop(sr), drop(ss), drop(sq));
-  }
+  if (!(bp + bq <= 0x1p-44 * (std::fabs(op) + std::fabs(oq))))
+    to_common_scale(orient2d_value(drop(r), drop(s), drop(p)), orient2d_value(drop(r), drop(s), drop(q)), op, oq);
   Box box;
   box.meet({p, q});
   box.meet({r, s});

@@ -40,10 +40,12 @@ inline std::int64_t mantissa(double x, int& e) {
 
 // The integer path: each product is an integer of at most 3 * 53 bits times 2^E; the positive and the
 // negative terms are added, shifted to the smallest E, into two wide unsigned accumulators, which are
-// then compared, and the difference's leading 128 bits rounded to a double. Exponents of products of three
-// doubles span less than 6300 bits: 104 limbs of 64 bits hold every sum of up to 32 terms.
-double integer_sum(const double* f, int count, int arity, int& sign) {
+// then compared, and the difference's leading 128 bits rounded to a double, returned as m 2^exponent
+// (frexp's m: the value itself may lie far below the doubles). Exponents of products of three doubles span
+// less than 6300 bits: 104 limbs of 64 bits hold every sum of up to 32 terms.
+double integer_sum(const double* f, int count, int arity, int& sign, int& exponent) {
   sign = 0;
+  exponent = 0;
   constexpr int kLimbs = 104;
   struct Term {
     bool negative;
@@ -117,8 +119,10 @@ double integer_sum(const double* f, int count, int arity, int& sign) {
   double v = static_cast<double>(diff[top]);
   if (top > 0) v += std::ldexp(static_cast<double>(diff[top - 1]), -64);
   // (the limbs below move the value by less than 2^-64 relative)
-  const double value = std::ldexp(v, 64 * top + emin);
-  return negative ? -value : value;
+  int k;
+  const double m = std::frexp(v, &k);
+  exponent = 64 * top + emin + k;
+  return negative ? -m : m;
 }
 
 // The exact sum as a non-overlapping expansion h[0..n) (increasing magnitude); false when a product
@@ -181,8 +185,8 @@ int exact_sign_of_sum(const double* f, int count, int arity) {
   double h[4 * 32];
   int n;
   if (!expansion(f, count, arity, h, n)) {
-    int sign;
-    integer_sum(f, count, arity, sign);
+    int sign, exponent;
+    integer_sum(f, count, arity, sign, exponent);
     return sign;
   }
   // In a non-overlapping expansion the last (largest) component carries the sign.
@@ -190,19 +194,21 @@ int exact_sign_of_sum(const double* f, int count, int arity) {
   return h[n - 1] > 0 ? 1 : -1;
 }
 
-double exact_sum(const double* f, int count, int arity) {
+double exact_sum(const double* f, int count, int arity, int& exponent) {
+  exponent = 0;
   if (!all_finite(f, count, arity)) return 0;
   double h[4 * 32];
   int n;
   if (!expansion(f, count, arity, h, n)) {
     int sign;
-    return integer_sum(f, count, arity, sign);
+    return integer_sum(f, count, arity, sign, exponent);
   }
   // Adding the components from the smallest: each is below half an ulp of the next, so the sum is the
-  // exact one to within a few ulps.
+  // exact one to within a few ulps. On this path every component is a multiple of 2^-1074 (expansion's
+  // floors), so a sum below 2^-1022 is a subnormal double exactly: nothing is lost to underflow.
   double s = 0;
   for (int i = 0; i < n; ++i) s += h[i];
-  return s;
+  return std::frexp(s, &exponent);
 }
 
 }  // namespace dlmfsi

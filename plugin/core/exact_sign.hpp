@@ -11,8 +11,10 @@ namespace dlmfsi {
 // finite (outside the contract; nothing undefined happens).
 int exact_sign_of_sum(const double* f, int count, int arity);
 
-// The same sum's value: the exact sum rounded, with a relative error of a few units in the last place
-// (sign exact, 0 exactly when the sum is 0). For constructions whose floating-point evaluation cancels.
-double exact_sum(const double* f, int count, int arity);
+// The same sum's value as m 2^e (e in exponent; m = 0 when the sum is 0, else 0.5 <= |m| < 1, as frexp
+// gives): the exact sum rounded, with a relative error of a few units in the last place, however far below
+// the doubles it lies (sums of products of subnormal or tiny differences). For constructions whose
+// floating-point evaluation cancels: a ratio of two such sums.
+double exact_sum(const double* f, int count, int arity, int& exponent);
 
 }  // namespace dlmfsi

@@ -54,16 +54,20 @@ int orient3d_exact(Point3 a, Point3 b, Point3 c, Point3 d) {
   return exact_sign_of_sum(&f[0][0], n, 3);
 }
 
-double orient3d_value(Point3 a, Point3 b, Point3 c, Point3 d) {
+ScaledValue orient3d_value(Point3 a, Point3 b, Point3 c, Point3 d) {
   double f[24][3];
   const int n = orient3d_terms(a, b, c, d, f);
-  return exact_sum(&f[0][0], n, 3);
+  ScaledValue v;
+  v.m = exact_sum(&f[0][0], n, 3, v.e);
+  return v;
 }
 
-double orient2d_value(Point a, Point b, Point c) {
+ScaledValue orient2d_value(Point a, Point b, Point c) {
   // det [b - a, c - a] = ax by - ay bx + bx cy - by cx + cx ay - cy ax
   const double f[6][2] = {{a.x, b.y}, {-a.y, b.x}, {b.x, c.y}, {-b.y, c.x}, {c.x, a.y}, {-c.y, a.x}};
-  return exact_sum(&f[0][0], 6, 2);
+  ScaledValue v;
+  v.m = exact_sum(&f[0][0], 6, 2, v.e);
+  return v;
 }
 
 }  // namespace dlmfsi

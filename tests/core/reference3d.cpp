@@ -100,6 +100,18 @@ mpq_class volume(const Polyhedron& p) {
 
 int exact_orientation3d(Point3 a, Point3 b, Point3 c, Point3 d) { return sgn(volume6(q(a), q(b), q(c), q(d))); }
 
+double exact_orientation3d_value(Point3 a, Point3 b, Point3 c, Point3 d, int& e) {
+  const mpq_class v = volume6(q(a), q(b), q(c), q(d));
+  e = 0;
+  if (sgn(v) == 0) return 0;
+  // doubles are dyadic: the denominator is a power of two, 2^(bits - 1)
+  const long den_bits = static_cast<long>(mpz_sizeinbase(v.get_den().get_mpz_t(), 2)) - 1;
+  long num_exp;
+  const double m = mpz_get_d_2exp(&num_exp, v.get_num().get_mpz_t());
+  e = static_cast<int>(num_exp - den_bits);
+  return m;
+}
+
 double exact_tet_volume(Point3 a, Point3 b, Point3 c, Point3 d) {
   const mpq_class v = volume6(q(a), q(b), q(c), q(d)) / 6;
   return v.get_d();

@@ -9,6 +9,10 @@ namespace dlmfsi::ref {
 // Sign of det [b - a, c - a, d - a] in GMP rationals (any finite doubles).
 int exact_orientation3d(Point3 a, Point3 b, Point3 c, Point3 d);
 
+// det [b - a, c - a, d - a] in GMP rationals as m 2^e (m = 0, or 0.5 <= |m| < 1, truncated to a double):
+// its value however far below the doubles it lies.
+double exact_orientation3d_value(Point3 a, Point3 b, Point3 c, Point3 d, int& e);
+
 // Signed volume of (a, b, c, d), exact and rounded once.
 double exact_tet_volume(Point3 a, Point3 b, Point3 c, Point3 d);
 

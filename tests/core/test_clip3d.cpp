@@ -315,3 +315,14 @@ TEST(Clip3d, CrossingsAreCanonical) {
   EXPECT_TRUE(c == crossing(f0, f1, e0, e1));
   EXPECT_TRUE(c == crossing(f1, f0, e1, e0));
 }
+
+TEST(Clip3d, SubnormalPerturbationOfASharedVertex) {
+  // A vertex shared by both tetrahedra (z = 0), moved by one and by two subnormal steps (2^-1074): the fuzz's
+  // pair 234612 of seed 7 (perturbed-1e-15 family).
+  const double tiny = 4.9406564584124654e-324;
+  const Tet a = positive({Point3{0.625, -1, 0.25}, Point3{0.75, -0.625, tiny}, Point3{0.609375, -0.15625, -0.234375},
+                          Point3{0.40625, 0.71875, -0.6875}});
+  const Tet b = positive({Point3{1, 0.125, -0.5}, Point3{0.5, -0.5, -0.125}, Point3{0.75, -0.625, 2 * tiny},
+                          Point3{0.375, 0.625, -0.625}});
+  check_all(a, b, "shared vertex moved by subnormals");
+}

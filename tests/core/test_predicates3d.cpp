@@ -12,8 +12,11 @@
 using dlmfsi::orient3d;
 using dlmfsi::orient3d_exact;
 using dlmfsi::orient3d_filter;
+using dlmfsi::orient3d_value;
+using dlmfsi::ScaledValue;
 using dlmfsi::Point3;
 using dlmfsi::ref::exact_orientation3d;
+using dlmfsi::ref::exact_orientation3d_value;
 
 namespace {
 
@@ -153,4 +156,50 @@ TEST(Predicates3d, AnyScaleFromSubnormalsToHuge) {
     ASSERT_EQ(orient3d(p[0], p[1], p[2], p[3]), exact_orientation3d(p[0], p[1], p[2], p[3])) << i;
   }
   EXPECT_GT(integer_path, 5000);
+}
+
+TEST(Predicates3d, ValuesBelowTheDoublesKeepTheirDigits) {
+  // orient3d_value (the constructions' determinant) against GMP rationals to a few ulps, also where the
+  // determinant lies far below the doubles: points one and two subnormal steps apart, differences of
+  // 2^-1074 against differences of 1, configurations mixing 1e-100 and 1e100 with subnormal coordinates.
+  // (A value rounded to a double first would keep a few bits of these, or none.)
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<int> mixed(-340, 340);
+  const double tiny = std::ldexp(1.0, -1074);
+  int below = 0;  // determinants below the smallest normal double
+  for (int i = 0; i < 20000; ++i) {
+    Point3 p[4];
+    for (Point3& x : p) x = {u(rng), u(rng), u(rng)};
+    switch (i % 4) {
+      case 0:  // four points off the plane z = 0 by 0 to 3 subnormal steps
+        for (Point3& x : p) x.z = std::ldexp(static_cast<double>(rng() % 4), -1074);
+        break;
+      case 1:  // two points one subnormal step apart
+        p[0] = {p[1].x, p[1].y, 2 * tiny};
+        p[1].z = tiny;
+        break;
+      case 2:  // mixed scales with subnormal coordinates
+        for (Point3& x : p) {
+          x = {std::ldexp(x.x, mixed(rng)), std::ldexp(x.y, mixed(rng)), std::ldexp(x.z, mixed(rng))};
+          if (rng() % 4 == 0) x.z = std::ldexp(u(rng), -1030 - static_cast<int>(rng() % 40));
+        }
+        break;
+      default:  // near-coplanar at unit scale
+        p[3] = near_plane(p[0], p[1], p[2], u(rng), u(rng));
+    }
+    int e_exact;
+    const double m_exact = exact_orientation3d_value(p[0], p[1], p[2], p[3], e_exact);
+    const ScaledValue v = orient3d_value(p[0], p[1], p[2], p[3]);
+    if (m_exact == 0) {
+      ASSERT_EQ(v.m, 0.0) << i;
+      continue;
+    }
+    below += e_exact < -1021;
+    ASSERT_TRUE(std::fabs(v.m) >= 0.5 && std::fabs(v.m) < 1) << i;
+    // the same value: m 2^e against m' 2^e', compared in the units of the exact one
+    const double got = std::ldexp(v.m, v.e - e_exact);
+    ASSERT_NEAR(got, m_exact, 8 * 0x1p-53) << i << ": exponent " << e_exact;
+  }
+  EXPECT_GT(below, 7500);
 }
