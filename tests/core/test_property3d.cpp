@@ -24,6 +24,8 @@
 #include <string>
 
 #include "clip3d.hpp"
+#include "coupling3d.hpp"
+#include "fluid_search3d.hpp"
 #include "predicates3d.hpp"
 #include "reference3d.hpp"
 #include "support3d.hpp"
@@ -323,4 +325,92 @@ TEST(Property3d, ClipperAgainstExactVolumes) {
   EXPECT_LE(tiling_error.value, 1e-13) << tiling_error.where;
   EXPECT_EQ(bad_shape, 0);
   EXPECT_EQ(failures, 0);
+}
+
+// Mesh pairs: a fluid Kuhn box mesh of [-1/2, 1/2]^3 (n^3 cubes, n = 2 or 4; a third jittered inside), and a
+// solid box mesh moved by a rigid motion: aligned (quarter turns about z and shifts by whole cells, exact:
+// faces on faces, vertices on vertices; a third of those shifted again by 2^-50 of a cell along a random
+// direction: faces 1e-15 apart), or turned by a random rotation. For every solid tetrahedron the search's
+// pieces are those of brute force over all the fluid tetrahedra and tile it (GMP volume); the P1 x P1
+// coupling under the identity map gives 1^T B 1 = the solid's volume. DLMFSI_FUZZ3D_MESHES pairs (default
+// 30), DLMFSI_FUZZ3D_SEED as above.
+TEST(Property3d, MeshPairsTileAndCouplingKeepsTheVolume) {
+  const long meshes = env_long("DLMFSI_FUZZ3D_MESHES", 30);
+  std::mt19937_64 rng(static_cast<std::uint64_t>(env_long("DLMFSI_FUZZ3D_SEED", 20240601)) + 1);
+  auto integer = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  const double pi = std::acos(-1.0);
+  const auto start = std::chrono::steady_clock::now();
+  Worst tiling, coupling;
+  long solid_tets = 0, pieces = 0, mismatches = 0, aligned_count = 0, nudged = 0;
+  for (long it = 0; it < meshes; ++it) {
+    const int n = integer(0, 1) ? 4 : 2;
+    const double h = 1.0 / n;
+    const bool jittered = integer(0, 2) == 0;
+    const Mesh3 fluid = test3d::box_mesh(n, n, n, {-0.5, -0.5, -0.5}, {1, 1, 1}, jittered ? 0.3 : 0,
+                                         static_cast<unsigned>(rng()));
+    const bool aligned = integer(0, 2) != 0;
+    const int m1 = integer(1, std::max(1, n / 2)), m2 = integer(1, std::max(1, n / 2)), m3 = integer(1, std::max(1, n / 2));
+    Mesh3 solid;
+    if (aligned) {
+      ++aligned_count;
+      solid = test3d::box_mesh(m1, m2, m3, {-(m1 / 2) * h, -(m2 / 2) * h, -(m3 / 2) * h}, {m1 * h, m2 * h, m3 * h});
+      for (int q = integer(0, 3); q > 0; --q) solid = test3d::quarter_turn(solid, {0, 0, 0});
+      const int lim = std::max(0, n / 2 - 1 - std::max({m1, m2, m3}) / 2 - 1);
+      Point3 shift{h * integer(-lim, lim), h * integer(-lim, lim), h * integer(-lim, lim)};
+      if (integer(0, 2) == 0) {  // faces 2^-50 of a cell apart
+        ++nudged;
+        shift = shift + std::ldexp(h, -50) * Point3{uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)};
+      }
+      solid = test3d::moved(solid, {0, 0, 1}, 0, {0, 0, 0}, shift);
+    } else {
+      const Point3 size{uniform(0.1, 0.4), uniform(0.1, 0.4), uniform(0.1, 0.4)};
+      solid = test3d::box_mesh(m1, m2, m3, -0.5 * size, size);
+      solid = test3d::moved(solid, {uniform(-1, 1), uniform(-1, 1), uniform(0.1, 1)}, uniform(0, 2 * pi), {0, 0, 0},
+                            {uniform(-0.05, 0.05), uniform(-0.05, 0.05), uniform(-0.05, 0.05)});
+    }
+    const std::string where = "mesh pair " + std::to_string(it) + (aligned ? " (aligned)" : " (rotated)");
+    FluidGrid3 grid(fluid);
+    FluidSearch3 search(grid);
+    int hint = 0;
+    double volume = 0;
+    for (int k = 0; k < solid.size(); ++k) {
+      Point3 t[4];
+      solid.corners(k, t);
+      std::vector<std::pair<int, double>> found, brute;
+      search.for_each_piece(t, hint, [&](int kf, const Piece3& p) { found.push_back({kf, p.volume()}); });
+      std::sort(found.begin(), found.end());
+      for (int kf = 0; kf < fluid.size(); ++kf) {
+        Point3 c[4];
+        fluid.corners(kf, c);
+        const Piece3 p = clip(t, c);
+        if (p.n > 0) brute.push_back({kf, p.volume()});
+      }
+      if (found != brute && ++mismatches <= 5)
+        ADD_FAILURE() << where << ", solid tetrahedron " << k << ": the search's pieces are not brute force's";
+      double sum = 0;
+      for (const auto& piece : found) sum += piece.second;
+      const double want = std::fabs(ref::exact_tet_volume(t[0], t[1], t[2], t[3]));
+      tiling.update(std::fabs(sum - want) / want, where + ", solid tetrahedron " + std::to_string(k));
+      volume += want;
+      ++solid_tets;
+      pieces += static_cast<long>(found.size());
+    }
+    const double identity[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    const test3d::AffineMap3 map(solid, identity, {0, 0, 0});
+    const test3d::P1Tet vf(fluid), vs(solid);
+    CouplingOptions opt;
+    opt.c1 = 0;
+    opt.c2 = 1;
+    const CsrMatrix b = assemble_coupling(FluidSide3(fluid, vf, {0}), SolidSide3(solid, vs, {0}), map, opt);
+    const std::vector<double> one_s(solid.vertices.size(), 1), one_f(fluid.vertices.size(), 1);
+    coupling.update(std::fabs(test3d::bilinear(b, one_s, one_f) - volume) / volume, where);
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("[ property3d ] %ld mesh pairs (%ld aligned, %ld of them nudged by 2^-50 h), %.1f s: %ld solid "
+              "tetrahedra, %ld pieces; worst relative error: tiling %.3g, 1'B1 against the volume %.3g\n",
+              meshes, aligned_count, nudged, seconds, solid_tets, pieces, tiling.value, coupling.value);
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_LE(tiling.value, 1e-13) << tiling.where;
+  EXPECT_LE(coupling.value, 1e-13) << coupling.where;
 }
