@@ -67,21 +67,27 @@ sanitize: deps
 	@cmake --build $(BUILD)-sanitize -j $(JOBS)
 	cd $(BUILD)-sanitize && DLMFSI_FUZZ_PAIRS=$(SANITIZE_FUZZ_PAIRS) ctest --output-on-failure -j $(JOBS)
 
-# libFuzzer target for the clipper and the fluid search (tests/fuzz/fuzz_clip.cpp), built with clang,
-# AddressSanitizer and UndefinedBehaviorSanitizer, run for FUZZ_TIME seconds on the corpus kept in
-# $(BUILD)-fuzz/corpus; a failing input is written to $(BUILD)-fuzz/crash-*. Not part of `make test`.
+# libFuzzer targets for the clipper and the fluid search (tests/fuzz/fuzz_clip.cpp) and for the
+# tetrahedron clipper against GMP volumes (tests/fuzz/fuzz_clip3d.cpp), built with clang, AddressSanitizer
+# and UndefinedBehaviorSanitizer, each run for FUZZ_TIME seconds on its corpus kept in $(BUILD)-fuzz/corpus
+# and corpus3d; a failing input is written to $(BUILD)-fuzz/crash-* (3d-crash-*). Not part of `make test`.
 FUZZ_TIME ?= 60
 CLANGXX ?= clang++
-FUZZ_SOURCES := tests/fuzz/fuzz_clip.cpp plugin/core/clip.cpp plugin/core/predicates.cpp plugin/core/mesh.cpp \
-  plugin/core/fluid_search.cpp
+FUZZ_FLAGS := -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all -Iplugin/core -Itests/core
+FUZZ_SOURCES := tests/fuzz/fuzz_clip.cpp plugin/core/clip.cpp plugin/core/predicates.cpp plugin/core/exact_sign.cpp \
+  plugin/core/mesh.cpp plugin/core/fluid_search.cpp
+FUZZ3D_SOURCES := tests/fuzz/fuzz_clip3d.cpp plugin/core/clip3d.cpp plugin/core/predicates3d.cpp \
+  plugin/core/predicates.cpp plugin/core/exact_sign.cpp tests/core/reference3d.cpp
 fuzz:
 	@scripts/install-deps fuzz
 	@scripts/check-tools fuzz
-	@mkdir -p $(BUILD)-fuzz/corpus
-	$(CLANGXX) -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-	  -Iplugin/core -Itests/core $(FUZZ_SOURCES) -o $(BUILD)-fuzz/fuzz_clip
+	@mkdir -p $(BUILD)-fuzz/corpus $(BUILD)-fuzz/corpus3d
+	$(CLANGXX) $(FUZZ_FLAGS) $(FUZZ_SOURCES) -o $(BUILD)-fuzz/fuzz_clip
+	$(CLANGXX) $(FUZZ_FLAGS) $(FUZZ3D_SOURCES) -lgmpxx -lgmp -o $(BUILD)-fuzz/fuzz_clip3d
 	$(BUILD)-fuzz/fuzz_clip -max_total_time=$(FUZZ_TIME) -print_final_stats=1 \
 	  -artifact_prefix=$(BUILD)-fuzz/ $(BUILD)-fuzz/corpus
+	$(BUILD)-fuzz/fuzz_clip3d -max_total_time=$(FUZZ_TIME) -print_final_stats=1 \
+	  -artifact_prefix=$(BUILD)-fuzz/3d- $(BUILD)-fuzz/corpus3d
 
 # The README's two commands as a new user meets them: a bare Debian 12 root (debootstrap minbase), a clean
 # clone of HEAD, `make test` then `make compare` in a chroot (scripts/fresh-check; root, about an hour).

@@ -1,0 +1,153 @@
+// libFuzzer target for the tetrahedron clipper: `make fuzz` builds it beside fuzz_clip with
+// clang++ -fsanitize=fuzzer,address,undefined and runs each for FUZZ_TIME seconds.
+//
+// The input's first byte picks how the rest decodes into two tetrahedra a and b:
+//   0  raw doubles: 24 little-endian doubles (NaN and infinities rejected, any other bit pattern kept);
+//   1  small integers on a grid (coordinates in [-8, 8] times a power of two from the input): coincident
+//      vertices, shared edges and faces, coplanar faces;
+//   2  b's vertices at dyadic barycentric combinations of a's vertices (weights k/8): on a's faces, edges
+//      and vertices;
+//   3  mode 1 or 2 with some coordinates moved by a few ulps or by a few subnormal steps (2^-1074: the
+//      configuration that once gave a piece 4e-5 too large).
+// Checked for every pair of positively oriented tetrahedra (a trap, so libFuzzer keeps the input):
+//   - no crash, no undefined behaviour (the sanitizers), the piece's shape (test3d::piece_shape: finite
+//     vertices, faces from the exact plane sets, Euler's formula, every vertex within round-off of both
+//     tetrahedra and of its faces' planes);
+//   - when the pair's scale M D^2 (M the largest |coordinate|, D the diameter) lies in [2^-900, 2^900], so
+//     volumes are representable: vol(a ∩ b) against the exact volume in GMP rationals, vol(b ∩ a), and a
+//     split of a into four tetrahedra about its centroid tiling a ∩ b, each to 1e-13 M D^2.
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "clip3d.hpp"
+#include "predicates3d.hpp"
+#include "reference3d.hpp"
+#include "support3d.hpp"
+
+using namespace dlmfsi;
+using dlmfsi::test3d::Tet;
+
+namespace {
+
+class Input {
+ public:
+  Input(const std::uint8_t* data, std::size_t size) : data_(data), size_(size) {}
+  std::uint8_t byte() { return pos_ < size_ ? data_[pos_++] : 0; }
+  // a finite double from 8 raw bytes; false for NaN and infinities, or when the input is used up
+  bool raw(double& v) {
+    if (pos_ + 8 > size_) return false;
+    std::memcpy(&v, data_ + pos_, 8);
+    pos_ += 8;
+    return std::isfinite(v);
+  }
+  int small(int lo, int hi) { return lo + byte() % (hi - lo + 1); }
+
+ private:
+  const std::uint8_t* data_;
+  std::size_t size_, pos_ = 0;
+};
+
+std::string describe(const Tet& a, const Tet& b) {
+  std::string s;
+  char buf[96];
+  for (const Tet* t : {&a, &b}) {
+    s += t == &a ? "\n a =" : "\n b =";
+    for (Point3 p : *t) {
+      std::snprintf(buf, sizeof buf, " (%.17g, %.17g, %.17g)", p.x, p.y, p.z);
+      s += buf;
+    }
+  }
+  return s;
+}
+
+[[noreturn]] void fail(const std::string& what, const Tet& a, const Tet& b, double x = 0, double y = 0) {
+  std::fprintf(stderr, "fuzz_clip3d: %s (%.17g, %.17g)%s\n", what.c_str(), x, y, describe(a, b).c_str());
+  std::abort();
+}
+
+void check_pair(Tet a, Tet b) {
+  if (!test3d::finite(a) || !test3d::finite(b) || !test3d::make_positive(a) || !test3d::make_positive(b)) return;
+  double m, d;
+  test3d::scales(a, b, m, d);
+  const Piece3 p = clip(a.data(), b.data()), q = clip(b.data(), a.data());
+  const double shape_tol = 64 * 2.2e-16 * m;
+  for (const std::string& shape : {test3d::piece_shape(p, a, b, shape_tol), test3d::piece_shape(q, b, a, shape_tol)})
+    if (!shape.empty()) fail(shape, a, b);
+  const double scale = m * d * d;
+  if (!(scale >= 0x1p-900 && scale <= 0x1p900)) return;  // volumes not representable
+  const double tol = 1e-13 * scale, v = p.volume();
+  const double exact = ref::exact_intersection_volume(a.data(), b.data());
+  if (!(std::fabs(v - exact) <= tol)) fail("volume against the exact volume", a, b, v, exact);
+  if (!(std::fabs(q.volume() - v) <= tol)) fail("vol(b ∩ a) != vol(a ∩ b)", a, b, q.volume(), v);
+  Tet parts[4];
+  if (test3d::split4(a, parts)) {
+    double s = 0;
+    for (const Tet& t : parts) s += clip(t.data(), b.data()).volume();
+    if (!(std::fabs(s - v) <= tol)) fail("a split in four does not tile a ∩ b", a, b, s, v);
+  }
+}
+
+bool grid_tets(Input& in, Tet& a, Tet& b) {
+  const double unit = std::ldexp(1.0, in.small(-60, 60));
+  for (Tet* t : {&a, &b})
+    for (Point3& p : *t) p = {unit * in.small(-8, 8), unit * in.small(-8, 8), unit * in.small(-8, 8)};
+  return true;
+}
+
+bool on_a(Input& in, Tet& a, Tet& b) {
+  if (!grid_tets(in, a, b)) return false;
+  for (Point3& p : b) {
+    if (in.byte() % 4 == 0) continue;  // keep the grid vertex
+    // weights w_i / 8 summing to 1 (the last takes the rest): on a face, an edge or a vertex of a when
+    // some are 0
+    int w[4], left = 8;
+    for (int i = 0; i < 3; ++i) {
+      w[i] = in.small(0, left);
+      left -= w[i];
+    }
+    w[3] = left;
+    p = {0, 0, 0};
+    for (int i = 0; i < 4; ++i) p = p + (w[i] / 8.0) * a[i];
+  }
+  return true;
+}
+
+void perturb(Input& in, Tet& a, Tet& b) {
+  for (Tet* t : {&a, &b})
+    for (Point3& p : *t)
+      for (double* c : {&p.x, &p.y, &p.z}) {
+        const int k = in.byte();
+        if (k % 5 == 0) *c = std::nextafter(*c, k & 8 ? HUGE_VAL : -HUGE_VAL);
+        if (k % 7 == 0) *c += (k & 16 ? 1 : -1) * std::ldexp(static_cast<double>(k % 3 + 1), -1074);
+      }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  Input in(data, size);
+  Tet a, b;
+  switch (in.byte() % 4) {
+    case 0:
+      for (Tet* t : {&a, &b})
+        for (Point3& p : *t)
+          if (!in.raw(p.x) || !in.raw(p.y) || !in.raw(p.z)) return 0;
+      break;
+    case 1:
+      grid_tets(in, a, b);
+      break;
+    case 2:
+      on_a(in, a, b);
+      break;
+    default:
+      if (in.byte() % 2) grid_tets(in, a, b);
+      else on_a(in, a, b);
+      perturb(in, a, b);
+  }
+  check_pair(a, b);
+  return 0;
+}
