@@ -118,20 +118,14 @@ namespace dlmfsi::test3d {
 
 // n x m x l grid of cubes on the box [o, o + size], each cube split into the six Kuhn tetrahedra (the
 // same diagonal in every cube: a conforming mesh); interior vertices moved at random by jitter times the
-// cell size when jitter > 0.
+// cell size when jitter > 0, the amplitude halved (the same draws) until no tetrahedron turns over: a valid
+// mesh (a turned tetrahedron would overlap its neighbours).
 inline Mesh3 box_mesh(int n, int m, int l, Point3 o, Point3 size, double jitter = 0, unsigned seed = 1) {
   Mesh3 mesh;
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 1);
-  const Point3 h{size.x / n, size.y / m, size.z / l};
   for (int k = 0; k <= l; ++k)
     for (int j = 0; j <= m; ++j)
-      for (int i = 0; i <= n; ++i) {
-        Point3 p{o.x + size.x * i / n, o.y + size.y * j / m, o.z + size.z * k / l};
-        if (jitter > 0 && i > 0 && i < n && j > 0 && j < m && k > 0 && k < l)
-          p = p + Point3{jitter * h.x * u(rng), jitter * h.y * u(rng), jitter * h.z * u(rng)};
-        mesh.vertices.push_back(p);
-      }
+      for (int i = 0; i <= n; ++i)
+        mesh.vertices.push_back({o.x + size.x * i / n, o.y + size.y * j / m, o.z + size.z * k / l});
   auto id = [&](int i, int j, int k) { return (k * (m + 1) + j) * (n + 1) + i; };
   static const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
   for (int k = 0; k < l; ++k)
@@ -149,6 +143,26 @@ inline Mesh3 box_mesh(int n, int m, int l, Point3 o, Point3 size, double jitter 
             std::swap(t[2], t[3]);
           mesh.tetrahedra.push_back(t);
         }
+  if (jitter > 0) {
+    const std::vector<Point3> grid = mesh.vertices;
+    const Point3 h{size.x / n, size.y / m, size.z / l};
+    for (double amp = jitter;; amp /= 2) {
+      std::mt19937_64 rng(seed);
+      std::uniform_real_distribution<double> u(-1, 1);
+      for (int k = 0; k <= l; ++k)
+        for (int j = 0; j <= m; ++j)
+          for (int i = 0; i <= n; ++i) {
+            Point3& p = mesh.vertices[id(i, j, k)];
+            p = grid[id(i, j, k)];
+            if (i > 0 && i < n && j > 0 && j < m && k > 0 && k < l)
+              p = p + Point3{amp * h.x * u(rng), amp * h.y * u(rng), amp * h.z * u(rng)};
+          }
+      bool positive = true;
+      for (const auto& t : mesh.tetrahedra)
+        positive = positive && orient3d(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], mesh.vertices[t[3]]) > 0;
+      if (positive) break;
+    }
+  }
   mesh.build_adjacency();
   return mesh;
 }
