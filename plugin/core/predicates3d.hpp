@@ -80,9 +80,9 @@ inline double orient2d_estimate(Point a, Point b, Point c, double& bound) {
 ScaledValue orient2d_value(Point a, Point b, Point c);
 
 // x and y as doubles in the units of the larger: m 2^(e - max(e_x, e_y)), so that their ratios are accurate
-// (the smaller may vanish against the larger: then it is below round-off of it).
+// (the smaller may vanish against the larger: then it is below round-off of it; a zero has no exponent).
 inline void to_common_scale(ScaledValue x, ScaledValue y, double& sx, double& sy) {
-  const int e = std::max(x.e, y.e);
+  const int e = x.m == 0 ? y.e : (y.m == 0 ? x.e : std::max(x.e, y.e));
   sx = std::ldexp(x.m, x.e - e);
   sy = std::ldexp(y.m, y.e - e);
 }
