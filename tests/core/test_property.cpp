@@ -20,7 +20,7 @@
 // Then small mesh pairs (DLMFSI_FUZZ_PAIRS / 1000 of them, at least 40): a fluid grid mesh (some with a
 // hole, some with jittered vertices) and a solid grid mesh moved by rotations (multiples of 90 degrees or
 // random angles) and translations (multiples of the fluid mesh size, so solid vertices land on fluid
-// vertices and solid edges on fluid edges, or random):
+// vertices and solid edges on fluid edges, a third of those moved again by 2^-50 of a cell, or random):
 //  - the pieces of each solid triangle found by FluidSearch are those of a brute-force scan, and tile it
 //    (to 1e-13 relative) where the fluid has no hole;
 //  - the pieces inside each fluid triangle of a patch covered by the solid mesh tile that triangle (to
@@ -481,7 +481,8 @@ TEST(Property, MeshPairsTileAndCouplingKeepsTheArea) {
   Generator gen(static_cast<std::uint64_t>(env_long("DLMFSI_FUZZ_SEED", 20240606)) + 1);
   const auto t0 = std::chrono::steady_clock::now();
   Worst solid_tiling, fluid_tiling, fluid_tiling_md, coupling_rel, solid_tiling_rel;
-  long solid_triangles = 0, fluid_triangles = 0, pieces = 0, failures = 0, on_vertices = 0, holes = 0, jitters = 0;
+  long solid_triangles = 0, fluid_triangles = 0, pieces = 0, failures = 0, on_vertices = 0, nudged = 0, holes = 0,
+       jitters = 0;
   auto fail = [&](const std::string& what) {
     if (++failures <= 10) ADD_FAILURE() << what;
   };
@@ -539,6 +540,10 @@ TEST(Property, MeshPairsTileAndCouplingKeepsTheArea) {
       const int lim = std::max(0, n / 2 - 1 - std::max(m1, m2) / 2 - 1);
       mo.t = {h * gen.integer(-lim, lim), h * gen.integer(-lim, lim)};
       ++on_vertices;
+      if (gen.integer(0, 2) == 0) {  // a third moved again by 2^-50 of a cell: edges 1e-15 apart
+        mo.t = mo.t + std::ldexp(h, -50) * Point{gen.uniform(-1, 1), gen.uniform(-1, 1)};
+        ++nudged;
+      }
     } else {
       const double th = gen.uniform(0, 2 * pi);
       mo.c = std::cos(th);
@@ -643,9 +648,10 @@ TEST(Property, MeshPairsTileAndCouplingKeepsTheArea) {
     if (!(rel <= kAreaTol)) fail("1^T B 1 != solid area in mesh pair " + std::to_string(it) + ": relative error " + std::to_string(rel));
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("[property] %ld mesh pairs (%ld moved by multiples of 90 degrees and of h, %ld fluid meshes with a hole, "
-              "%ld jittered) in %.2f s: %ld solid triangles (%ld pieces), %ld covered fluid triangles\n",
-              meshes, on_vertices, holes, jitters, seconds, solid_triangles, pieces, fluid_triangles);
+  std::printf("[property] %ld mesh pairs (%ld moved by multiples of 90 degrees and of h, %ld of them nudged by 2^-50 h; "
+              "%ld fluid meshes with a hole, %ld jittered) in %.2f s: %ld solid triangles (%ld pieces), %ld covered "
+              "fluid triangles\n",
+              meshes, on_vertices, nudged, holes, jitters, seconds, solid_triangles, pieces, fluid_triangles);
   std::printf("[property] worst relative errors: solid tiling %.3g (%.3g M D), fluid tiling %.3g (%.3g M D), 1^T B 1 %.3g\n",
               solid_tiling_rel.value, solid_tiling.value, fluid_tiling.value, fluid_tiling_md.value, coupling_rel.value);
   EXPECT_EQ(failures, 0);
