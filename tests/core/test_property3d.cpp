@@ -333,7 +333,8 @@ TEST(Property3d, ClipperAgainstExactVolumes) {
 // 1e-15 apart), or turned by a random rotation; a quarter of the fluids with a hole. For every solid tetrahedron
 // the search's pieces are those of brute force over all the fluid tetrahedra and, without a hole, tile it (GMP
 // volume); the P1 x P1 coupling under the identity map gives 1^T B 1 = the solid's volume (with a hole and
-// drop_outside, the brute-force pieces' volume). DLMFSI_FUZZ3D_MESHES pairs (default 30), DLMFSI_FUZZ3D_SEED as
+// drop_outside, the brute-force pieces' volume); a rotated solid placed by a random affine map instead (rotation
+// times shear), 1^T B 1 = the volume and 1^T B u = the exact integral of a linear u. DLMFSI_FUZZ3D_MESHES pairs (default 30), DLMFSI_FUZZ3D_SEED as
 // above.
 TEST(Property3d, MeshPairsTileAndCouplingKeepsTheVolume) {
   const long meshes = env_long("DLMFSI_FUZZ3D_MESHES", 30);
@@ -342,7 +343,7 @@ TEST(Property3d, MeshPairsTileAndCouplingKeepsTheVolume) {
   auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
   const double pi = std::acos(-1.0);
   const auto start = std::chrono::steady_clock::now();
-  Worst tiling, coupling;
+  Worst tiling, coupling, mapped;
   long solid_tets = 0, pieces = 0, mismatches = 0, aligned_count = 0, nudged = 0, holes = 0;
   for (long it = 0; it < meshes; ++it) {
     const int n = integer(0, 1) ? 4 : 2;
@@ -427,13 +428,48 @@ TEST(Property3d, MeshPairsTileAndCouplingKeepsTheVolume) {
     const std::vector<double> one_s(solid.vertices.size(), 1), one_f(fluid.vertices.size(), 1);
     // relative to the solid's volume; with a hole against the brute-force pieces' volumes
     coupling.update(std::fabs(test3d::bilinear(b, one_s, one_f) - (hole ? covered : volume)) / volume, where);
+    if (hole || aligned) continue;  // (an aligned solid may be too large to turn inside the fluid)
+    // The same solid placed by an affine map X(s) = c + A (s - c) (A a rotation times a shear, det 0.85 to
+    // 1.16, |A| <= 1.15: inside the fluid; c the solid's centre) instead: the coupling integrates over the reference solid, so 1^T B 1 is its
+    // volume whatever the map, and for the linear fluid function u(x) = g . x + 1, 1^T B u = sum over the solid
+    // tetrahedra of vol_k u(X(centroid_k)), exactly.
+    double r[3][3], a[3][3];
+    test3d::rotation({uniform(-1, 1), uniform(-1, 1), uniform(0.1, 1)}, uniform(0, 2 * pi), r);
+    const double shear[3][3] = {{uniform(0.95, 1.05), uniform(-0.05, 0.05), uniform(-0.05, 0.05)},
+                                {0, uniform(0.95, 1.05), uniform(-0.05, 0.05)},
+                                {0, 0, uniform(0.95, 1.05)}};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) a[i][j] = r[i][0] * shear[0][j] + r[i][1] * shear[1][j] + r[i][2] * shear[2][j];
+    Point3 centre{0, 0, 0};
+    for (Point3 v : solid.vertices) centre = centre + (1.0 / static_cast<double>(solid.vertices.size())) * v;
+    const Point3 ac{a[0][0] * centre.x + a[0][1] * centre.y + a[0][2] * centre.z,
+                    a[1][0] * centre.x + a[1][1] * centre.y + a[1][2] * centre.z,
+                    a[2][0] * centre.x + a[2][1] * centre.y + a[2][2] * centre.z};
+    const test3d::AffineMap3 placed(solid, a, centre - ac);
+    const CsrMatrix bp = assemble_coupling(FluidSide3(fluid, vf, {0}), SolidSide3(solid, vs, {0}), placed, opt);
+    const Point3 g{uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)};
+    std::vector<double> u(fluid.vertices.size());
+    for (size_t v = 0; v < u.size(); ++v) u[v] = dot(g, fluid.vertices[v]) + 1;
+    double want_u = 0;
+    for (int k = 0; k < solid.size(); ++k) {
+      Point3 t[4];
+      solid.corners(k, t);
+      const Point3 x = placed.apply(0.25 * (t[0] + t[1] + t[2] + t[3]));
+      want_u += std::fabs(ref::exact_tet_volume(t[0], t[1], t[2], t[3])) * (dot(g, x) + 1);
+    }
+    const double scale_u = volume * (1 + std::fabs(g.x) + std::fabs(g.y) + std::fabs(g.z));
+    mapped.update(std::max(std::fabs(test3d::bilinear(bp, one_s, one_f) - volume) / volume,
+                           std::fabs(test3d::bilinear(bp, one_s, u) - want_u) / scale_u),
+                  where + ", under an affine map");
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("[ property3d ] %ld mesh pairs (%ld aligned, %ld of them nudged by 2^-50 h; %ld fluids with a hole), "
               "%.1f s: %ld solid tetrahedra, %ld pieces; worst relative error: tiling %.3g, 1'B1 against the volume "
-              "%.3g\n",
-              meshes, aligned_count, nudged, holes, seconds, solid_tets, pieces, tiling.value, coupling.value);
+              "%.3g, under an affine map %.3g\n",
+              meshes, aligned_count, nudged, holes, seconds, solid_tets, pieces, tiling.value, coupling.value,
+              mapped.value);
   EXPECT_EQ(mismatches, 0);
   EXPECT_LE(tiling.value, 1e-13) << tiling.where;
   EXPECT_LE(coupling.value, 1e-13) << coupling.where;
+  EXPECT_LE(mapped.value, 1e-13) << mapped.where;
 }
