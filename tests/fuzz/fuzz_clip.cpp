@@ -27,34 +27,17 @@
 #include "clip.hpp"
 #include "errors.hpp"
 #include "fluid_search.hpp"
+#include "fuzz_input.hpp"
 #include "mesh.hpp"
 #include "piece_check.hpp"
 #include "predicates.hpp"
 
 using namespace dlmfsi;
+using dlmfsi::fuzz::Input;
 
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
-
-class Input {
- public:
-  Input(const std::uint8_t* data, std::size_t size) : data_(data), size_(size) {}
-  bool has(std::size_t n) const { return pos_ + n <= size_; }
-  std::uint8_t byte() { return pos_ < size_ ? data_[pos_++] : 0; }
-  // a finite double from 8 raw bytes; false for NaN and infinities
-  bool raw(double& v) {
-    if (!has(8)) return false;
-    std::memcpy(&v, data_ + pos_, 8);
-    pos_ += 8;
-    return std::isfinite(v);
-  }
-  int small(int lo, int hi) { return lo + byte() % (hi - lo + 1); }
-
- private:
-  const std::uint8_t* data_;
-  std::size_t size_, pos_ = 0;
-};
 
 [[noreturn]] void fail(const char* what, const Point a[3], const Point b[3], double x = 0, double y = 0) {
   std::fprintf(stderr, "fuzz_clip: %s (%.17g, %.17g)\n a = (%.17g, %.17g) (%.17g, %.17g) (%.17g, %.17g)\n b = (%.17g, %.17g) (%.17g, %.17g) (%.17g, %.17g)\n",

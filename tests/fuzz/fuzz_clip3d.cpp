@@ -12,10 +12,12 @@
 // Checked for every pair of positively oriented tetrahedra (a trap, so libFuzzer keeps the input):
 //   - no crash, no undefined behaviour (the sanitizers), the piece's shape (test3d::piece_shape: finite
 //     vertices, faces from the exact plane sets, Euler's formula, every vertex within round-off of both
-//     tetrahedra and of its faces' planes);
+//     tetrahedra and of its faces' planes: 64 eps M, and at least two subnormal steps, 2^-1073, since for
+//     tetrahedra of subnormal size the constructed vertices are multiples of 2^-1074);
 //   - when the pair's scale M D^2 (M the largest |coordinate|, D the diameter) lies in [2^-900, 2^900], so
 //     volumes are representable: vol(a ∩ b) against the exact volume in GMP rationals, vol(b ∩ a), and a
 //     split of a into four tetrahedra about its centroid tiling a ∩ b, each to 1e-13 M D^2.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -24,32 +26,16 @@
 #include <string>
 
 #include "clip3d.hpp"
+#include "fuzz_input.hpp"
 #include "predicates3d.hpp"
 #include "reference3d.hpp"
 #include "support3d.hpp"
 
 using namespace dlmfsi;
+using dlmfsi::fuzz::Input;
 using dlmfsi::test3d::Tet;
 
 namespace {
-
-class Input {
- public:
-  Input(const std::uint8_t* data, std::size_t size) : data_(data), size_(size) {}
-  std::uint8_t byte() { return pos_ < size_ ? data_[pos_++] : 0; }
-  // a finite double from 8 raw bytes; false for NaN and infinities, or when the input is used up
-  bool raw(double& v) {
-    if (pos_ + 8 > size_) return false;
-    std::memcpy(&v, data_ + pos_, 8);
-    pos_ += 8;
-    return std::isfinite(v);
-  }
-  int small(int lo, int hi) { return lo + byte() % (hi - lo + 1); }
-
- private:
-  const std::uint8_t* data_;
-  std::size_t size_, pos_ = 0;
-};
 
 std::string describe(const Tet& a, const Tet& b) {
   std::string s;
@@ -74,7 +60,9 @@ void check_pair(Tet a, Tet b) {
   double m, d;
   test3d::scales(a, b, m, d);
   const Piece3 p = clip(a.data(), b.data()), q = clip(b.data(), a.data());
-  const double shape_tol = 64 * 2.2e-16 * m;
+  // round-off of a constructed vertex: relative to the coordinates, and at least two subnormal steps
+  // (tetrahedra of subnormal size have no finer coordinates)
+  const double shape_tol = std::max(64 * 2.2e-16 * m, 0x1p-1073);
   for (const std::string& shape : {test3d::piece_shape(p, a, b, shape_tol), test3d::piece_shape(q, b, a, shape_tol)})
     if (!shape.empty()) fail(shape, a, b);
   const double scale = m * d * d;
