@@ -167,6 +167,20 @@ inline Mesh3 box_mesh(int n, int m, int l, Point3 o, Point3 size, double jitter 
   return mesh;
 }
 
+// A fluid box mesh with the tetrahedra whose centroid lies in a ball removed (a hole: non-convex).
+inline Mesh3 with_hole(const Mesh3& mesh, Point3 centre, double radius) {
+  Mesh3 out;
+  out.vertices = mesh.vertices;
+  for (int k = 0; k < mesh.size(); ++k) {
+    Point3 c[4];
+    mesh.corners(k, c);
+    const Point3 m = 0.25 * (c[0] + c[1] + c[2] + c[3]) - centre;
+    if (dot(m, m) > radius * radius) out.tetrahedra.push_back(mesh.tetrahedra[k]);
+  }
+  out.build_adjacency();
+  return out;
+}
+
 // The mesh moved by x -> centre + R (x - centre) + shift (R a rotation about axis by angle, Rodrigues);
 // angle 0 keeps the vertices bit for bit (then only the shift is applied, exactly for dyadic values).
 inline Mesh3 moved(Mesh3 mesh, Point3 axis, double angle, Point3 centre, Point3 shift) {

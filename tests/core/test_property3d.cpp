@@ -355,17 +355,7 @@ TEST(Property3d, MeshPairsTileAndCouplingKeepsTheVolume) {
     // centre removed: a non-convex mesh the solid leaves and re-enters, assembled with drop_outside).
     const bool hole = integer(0, 3) == 0;
     if (hole) {
-      const Point3 centre{uniform(-0.1, 0.1), uniform(-0.1, 0.1), uniform(-0.1, 0.1)};
-      Mesh3 holed;
-      holed.vertices = fluid.vertices;
-      for (int k = 0; k < fluid.size(); ++k) {
-        Point3 c[4];
-        fluid.corners(k, c);
-        const Point3 d = 0.25 * (c[0] + c[1] + c[2] + c[3]) - centre;
-        if (dot(d, d) > 0.04) holed.tetrahedra.push_back(fluid.tetrahedra[k]);
-      }
-      holed.build_adjacency();
-      fluid = holed;
+      fluid = test3d::with_hole(fluid, {uniform(-0.1, 0.1), uniform(-0.1, 0.1), uniform(-0.1, 0.1)}, 0.2);
       ++holes;
     }
     const bool aligned = integer(0, 2) != 0;

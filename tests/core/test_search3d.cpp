@@ -38,19 +38,6 @@ std::vector<std::pair<int, double>> by_brute_force(const Mesh3& fluid, const Poi
   return out;
 }
 
-// A fluid box mesh with the tetrahedra whose centroid lies in a ball removed (a hole: non-convex).
-Mesh3 with_hole(const Mesh3& mesh, Point3 centre, double radius) {
-  Mesh3 out;
-  out.vertices = mesh.vertices;
-  for (int k = 0; k < mesh.size(); ++k) {
-    Point3 c[4];
-    mesh.corners(k, c);
-    const Point3 m = 0.25 * (c[0] + c[1] + c[2] + c[3]) - centre;
-    if (dot(m, m) > radius * radius) out.tetrahedra.push_back(mesh.tetrahedra[k]);
-  }
-  out.build_adjacency();
-  return out;
-}
 
 }  // namespace
 
@@ -99,7 +86,7 @@ TEST(Search3d, PiecesMatchBruteForce) {
   // boundary and across the hole
   const Mesh3 plain = test3d::box_mesh(4, 4, 4, {0, 0, 0}, {1, 1, 1});
   const Mesh3 jittered = test3d::box_mesh(4, 4, 4, {0, 0, 0}, {1, 1, 1}, 0.35, 7);
-  const Mesh3 holed = with_hole(plain, {0.5, 0.5, 0.5}, 0.3);
+  const Mesh3 holed = test3d::with_hole(plain, {0.5, 0.5, 0.5}, 0.3);
   std::mt19937_64 rng(4);
   std::uniform_real_distribution<double> u(-0.2, 1.2), size(0.02, 0.6);
   long pieces = 0;
