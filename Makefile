@@ -68,7 +68,7 @@ sanitize: deps
 	cd $(BUILD)-sanitize && DLMFSI_FUZZ_PAIRS=$(SANITIZE_FUZZ_PAIRS) ctest --output-on-failure -j $(JOBS)
 
 # libFuzzer targets for the clipper and the fluid search (tests/fuzz/fuzz_clip.cpp) and for the
-# tetrahedron clipper against GMP volumes (tests/fuzz/fuzz_clip3d.cpp), built with clang, AddressSanitizer
+# tetrahedron clipper against GMP volumes and the 3D search (tests/fuzz/fuzz_clip3d.cpp), built with clang, AddressSanitizer
 # and UndefinedBehaviorSanitizer, each run for FUZZ_TIME seconds on its corpus kept in $(BUILD)-fuzz/corpus
 # and corpus3d; a failing input is written to $(BUILD)-fuzz/crash-* (3d-crash-*). Not part of `make test`.
 FUZZ_TIME ?= 60
@@ -77,7 +77,8 @@ FUZZ_FLAGS := -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitiz
 FUZZ_SOURCES := tests/fuzz/fuzz_clip.cpp plugin/core/clip.cpp plugin/core/predicates.cpp plugin/core/exact_sign.cpp \
   plugin/core/mesh.cpp plugin/core/fluid_search.cpp
 FUZZ3D_SOURCES := tests/fuzz/fuzz_clip3d.cpp plugin/core/clip3d.cpp plugin/core/predicates3d.cpp \
-  plugin/core/predicates.cpp plugin/core/exact_sign.cpp tests/core/reference3d.cpp
+  plugin/core/predicates.cpp plugin/core/exact_sign.cpp plugin/core/mesh3d.cpp plugin/core/fluid_search3d.cpp \
+  tests/core/reference3d.cpp
 fuzz:
 	@scripts/install-deps fuzz
 	@scripts/check-tools fuzz

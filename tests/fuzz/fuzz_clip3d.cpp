@@ -8,7 +8,10 @@
 //   2  b's vertices at dyadic barycentric combinations of a's vertices (weights k/8): on a's faces, edges
 //      and vertices;
 //   3  mode 1 or 2 with some coordinates moved by a few ulps or by a few subnormal steps (2^-1074: the
-//      configuration that once gave a piece 4e-5 too large).
+//      configuration that once gave a piece 4e-5 too large);
+//   4  a small fluid Kuhn box mesh over a box and a tetrahedron, both from raw doubles (or the tetrahedron on
+//      the grid's vertices and midpoints): FluidSearch3 against a brute-force scan of the mesh, the same fluid
+//      tetrahedra (the pieces are the same clip's).
 // Checked for every pair of positively oriented tetrahedra (a trap, so libFuzzer keeps the input):
 //   - no crash, no undefined behaviour (the sanitizers), the piece's shape (test3d::piece_shape: finite
 //     vertices, faces from the exact plane sets, Euler's formula, every vertex within round-off of both
@@ -24,8 +27,11 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "clip3d.hpp"
+#include "errors.hpp"
+#include "fluid_search3d.hpp"
 #include "fuzz_input.hpp"
 #include "predicates3d.hpp"
 #include "reference3d.hpp"
@@ -114,12 +120,56 @@ void perturb(Input& in, Tet& a, Tet& b) {
       }
 }
 
+void check_search(Input& in) {
+  double box[6];
+  for (double& v : box)
+    if (!in.raw(v)) return;
+  const int n = in.small(1, 3), m = in.small(1, 3), l = in.small(1, 3);
+  Mesh3 fluid;
+  try {
+    fluid = test3d::box_mesh(n, m, l, {box[0], box[1], box[2]}, {box[3], box[4], box[5]});
+  } catch (const Error&) {  // non-finite vertices, flat tetrahedra
+    return;
+  }
+  Tet t;
+  if (in.byte() % 2) {
+    for (Point3& p : t)
+      if (!in.raw(p.x) || !in.raw(p.y) || !in.raw(p.z)) return;
+  } else {  // on the grid: mesh vertices and midpoints of two of them (cell and face centres, edge midpoints)
+    const int nv = static_cast<int>(fluid.vertices.size());
+    for (Point3& p : t) {
+      const Point3 u = fluid.vertices[in.byte() % nv], v = fluid.vertices[in.byte() % nv];
+      p = in.byte() % 2 ? u : 0.5 * (u + v);
+    }
+  }
+  if (!test3d::finite(t) || !test3d::make_positive(t)) return;
+  FluidGrid3 grid(fluid);
+  FluidSearch3 search(grid);
+  int hint = 0;
+  std::vector<int> found, brute;
+  search.for_each_piece(t.data(), hint, [&](int k, const Piece3&) { found.push_back(k); });
+  std::sort(found.begin(), found.end());
+  for (int k = 0; k < fluid.size(); ++k) {
+    Point3 c[4];
+    fluid.corners(k, c);
+    if (clip(t.data(), c).n > 0) brute.push_back(k);
+  }
+  if (found != brute)
+    fail("FluidSearch3 and brute force find other tetrahedra", t, t, static_cast<double>(found.size()),
+         static_cast<double>(brute.size()));
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   Input in(data, size);
   Tet a, b;
-  switch (in.byte() % 4) {
+  const int mode = in.byte() % 5;
+  if (mode == 4) {
+    check_search(in);
+    return 0;
+  }
+  switch (mode) {
     case 0:
       for (Tet* t : {&a, &b})
         for (Point3& p : *t)
