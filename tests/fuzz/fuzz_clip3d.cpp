@@ -85,15 +85,14 @@ void check_pair(Tet a, Tet b) {
   }
 }
 
-bool grid_tets(Input& in, Tet& a, Tet& b) {
+void grid_tets(Input& in, Tet& a, Tet& b) {
   const double unit = std::ldexp(1.0, in.small(-60, 60));
   for (Tet* t : {&a, &b})
     for (Point3& p : *t) p = {unit * in.small(-8, 8), unit * in.small(-8, 8), unit * in.small(-8, 8)};
-  return true;
 }
 
-bool on_a(Input& in, Tet& a, Tet& b) {
-  if (!grid_tets(in, a, b)) return false;
+void on_a(Input& in, Tet& a, Tet& b) {
+  grid_tets(in, a, b);
   for (Point3& p : b) {
     if (in.byte() % 4 == 0) continue;  // keep the grid vertex
     // weights w_i / 8 summing to 1 (the last takes the rest): on a face, an edge or a vertex of a when
@@ -107,7 +106,6 @@ bool on_a(Input& in, Tet& a, Tet& b) {
     p = {0, 0, 0};
     for (int i = 0; i < 4; ++i) p = p + (w[i] / 8.0) * a[i];
   }
-  return true;
 }
 
 void perturb(Input& in, Tet& a, Tet& b) {
@@ -135,7 +133,7 @@ void check_search(Input& in) {
   if (in.byte() % 2) {
     for (Point3& p : t)
       if (!in.raw(p.x) || !in.raw(p.y) || !in.raw(p.z)) return;
-  } else {  // on the grid: mesh vertices and midpoints of two of them (cell and face centres, edge midpoints)
+  } else {  // on the grid: mesh vertices, and midpoints of two of them
     const int nv = static_cast<int>(fluid.vertices.size());
     for (Point3& p : t) {
       const Point3 u = fluid.vertices[in.byte() % nv], v = fluid.vertices[in.byte() % nv];
