@@ -70,7 +70,8 @@ sanitize: deps
 # libFuzzer targets for the clipper and the fluid search (tests/fuzz/fuzz_clip.cpp) and for the
 # tetrahedron clipper against GMP volumes and the 3D search (tests/fuzz/fuzz_clip3d.cpp), built with clang, AddressSanitizer
 # and UndefinedBehaviorSanitizer, each run for FUZZ_TIME seconds on its corpus kept in $(BUILD)-fuzz/corpus
-# and corpus3d; a failing input is written to $(BUILD)-fuzz/crash-* (3d-crash-*). Not part of `make test`.
+# and corpus3d, starting from the inputs kept in tests/fuzz/corpus/ (which make test replays); a failing input
+# is written to $(BUILD)-fuzz/crash-* (3d-crash-*): add it there once understood. Not part of `make test`.
 FUZZ_TIME ?= 60
 CLANGXX ?= clang++
 FUZZ_FLAGS := -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all -Iplugin/core -Itests/core
@@ -86,9 +87,9 @@ fuzz:
 	$(CLANGXX) $(FUZZ_FLAGS) $(FUZZ_SOURCES) -o $(BUILD)-fuzz/fuzz_clip
 	$(CLANGXX) $(FUZZ_FLAGS) $(FUZZ3D_SOURCES) -lgmpxx -lgmp -o $(BUILD)-fuzz/fuzz_clip3d
 	$(BUILD)-fuzz/fuzz_clip -max_total_time=$(FUZZ_TIME) -print_final_stats=1 \
-	  -artifact_prefix=$(BUILD)-fuzz/ $(BUILD)-fuzz/corpus
+	  -artifact_prefix=$(BUILD)-fuzz/ $(BUILD)-fuzz/corpus tests/fuzz/corpus/2d
 	$(BUILD)-fuzz/fuzz_clip3d -max_total_time=$(FUZZ_TIME) -print_final_stats=1 \
-	  -artifact_prefix=$(BUILD)-fuzz/3d- $(BUILD)-fuzz/corpus3d
+	  -artifact_prefix=$(BUILD)-fuzz/3d- $(BUILD)-fuzz/corpus3d tests/fuzz/corpus/3d
 
 # The README's two commands as a new user meets them: a bare Debian 12 root (debootstrap minbase), a clean
 # clone of HEAD, `make test` then `make compare` in a chroot (scripts/fresh-check; root, about an hour).
