@@ -160,7 +160,7 @@ inline Mesh3 box_mesh(int n, int m, int l, Point3 o, Point3 size, double jitter 
       bool positive = true;
       for (const auto& t : mesh.tetrahedra)
         positive = positive && orient3d(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], mesh.vertices[t[3]]) > 0;
-      if (positive) break;
+      if (positive || amp == 0) break;  // (at 0 the grid itself)
     }
   }
   mesh.build_adjacency();

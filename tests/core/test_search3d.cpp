@@ -38,7 +38,6 @@ std::vector<std::pair<int, double>> by_brute_force(const Mesh3& fluid, const Poi
   return out;
 }
 
-
 }  // namespace
 
 TEST(Search3d, LocateMatchesBruteForce) {
