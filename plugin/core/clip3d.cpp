@@ -348,7 +348,7 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
     if (a_outside >> i & 1u) continue;
     unsigned planes = faces_at_vertex(i);
     for (int j = 0; j < 4; ++j)
-      if (!((pos_b[j] | neg_b[j]) >> i & 1u)) planes |= 1u << (4 + j);
+      if (side_in(pos_b[j], neg_b[j], i) == 0) planes |= 1u << (4 + j);
     add(a[i], planes);
   }
   // Vertices of b in closed a that are not vertices of a.
@@ -358,7 +358,7 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
     if (b[j] == a[0] || b[j] == a[1] || b[j] == a[2] || b[j] == a[3]) continue;
     unsigned planes = faces_at_vertex(j) << 4;
     for (int i = 0; i < 4; ++i)
-      if (!((pos_a[i] | neg_a[i]) >> j & 1u)) planes |= 1u << i;
+      if (side_in(pos_a[i], neg_a[i], j) == 0) planes |= 1u << i;
     add(b[j], planes);
   }
   // The orientations of a's edge lines against b's: edge(ea) of a, edge(eb) of b,
