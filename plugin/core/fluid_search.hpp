@@ -13,6 +13,8 @@ struct Triangles {
   using Point = dlmfsi::Point;
   using Piece = dlmfsi::Piece;
   static constexpr int kDim = 2, kCorners = 3;
+  // A clip costs about a location: the search clips t against the hint first (FluidSearchOf).
+  static constexpr bool kClipHintFirst = true;
 
   static double coordinate(Point p, int a) { return a == 0 ? p.x : p.y; }
   // The grid's cells per axis for nt triangles over a box of widths w.

@@ -13,6 +13,8 @@ struct Tetrahedra {
   using Point = Point3;
   using Piece = Piece3;
   static constexpr int kDim = 3, kCorners = 4;
+  // A clip costs several locations here: the search locates t's centroid first (FluidSearchOf).
+  static constexpr bool kClipHintFirst = false;
 
   static double coordinate(Point3 p, int a) { return dlmfsi::coordinate(p, a); }
   // The grid's cells per axis for nt tetrahedra over a box of widths w.

@@ -11,7 +11,8 @@ namespace dlmfsi {
 // One per thread (it keeps visit marks). Elements describes the mesh (Triangles in fluid_search.hpp,
 // Tetrahedra in fluid_search3d.hpp): besides what FluidGridOf uses, its Piece type, centroid(t),
 // side(mesh, k, i, p) (the exact sign of p with respect to facet i of element k, opposite vertex i: +1 on
-// the element's side), max_walk_steps(n), Faces (what clip prepares once from t), clip(t, faces, k, beyond)
+// the element's side), max_walk_steps(n), kClipHintFirst (does for_each_piece clip t against the hint
+// before it locates t's centroid?), Faces (what clip prepares once from t), clip(t, faces, k, beyond)
 // and reaches_beyond(beyond, i) (t reaches beyond facet i of k).
 template <class Elements>
 class FluidSearchOf {
@@ -29,12 +30,12 @@ class FluidSearchOf {
   int locate(PointT p, int hint) const;
 
   // Calls visit(k, piece) once for every fluid element k whose interior meets the interior of the
-  // positively oriented element t, with piece = t ∩ k. Advancing front: from the element holding t's
-  // centroid, across fluid facets while pieces are non-empty (the elements meeting a convex set are
-  // facet-connected through such elements, and a path inside t crosses each facet where t reaches beyond
-  // its line or plane); the grid when the centroid is outside the fluid mesh, and after the walk when t
-  // reaches beyond a boundary facet of a visited element (t may re-enter a non-convex mesh).
-  // hint: where the walk starts, updated to an element near t.
+  // positively oriented element t, with piece = t ∩ k. Advancing front: from the hint when it meets t
+  // (kClipHintFirst) or else the element holding t's centroid, across fluid facets while pieces are
+  // non-empty (the elements meeting a convex set are facet-connected through such elements, and a path
+  // inside t crosses each facet where t reaches beyond its line or plane); the grid when the centroid is
+  // outside the fluid mesh, and after the walk when t reaches beyond a boundary facet of a visited element
+  // (t may re-enter a non-convex mesh). hint: where the walk starts, updated to an element that meets t.
   template <class Visit>
   void for_each_piece(const PointT t[kCorners], int& hint, Visit&& visit);
 
@@ -90,14 +91,28 @@ void FluidSearchOf<Elements>::for_each_piece(const PointT t[kCorners], int& hint
     std::fill(stamp_of_.begin(), stamp_of_.end(), 0u);
     stamp_ = 1;
   }
-  const int start = locate(Elements::centroid(t), hint);
   typename Elements::Faces t_faces;  // what clip needs of t, formed once for all the elements it meets
   t_faces.set(t);
   PointT k_corners[kCorners];
   unsigned beyond;
+  // The front may start from any element that meets t: with kClipHintFirst the hint's first (the last
+  // element's start, which meets t when the elements come in an order that keeps neighbours together),
+  // else the one holding t's centroid.
+  int start = -1;
+  PieceT first;
+  if (Elements::kClipHintFirst && hint >= 0 && hint < fluid_.size()) {
+    fluid_.corners(hint, k_corners);
+    first = Elements::clip(t, t_faces, k_corners, beyond);
+    if (first.n > 0) start = hint;
+  }
+  if (start < 0) {
+    start = locate(Elements::centroid(t), hint);
+    if (start >= 0) {
+      fluid_.corners(start, k_corners);
+      first = Elements::clip(t, t_faces, k_corners, beyond);
+    }
+  }
   if (start >= 0) {
-    fluid_.corners(start, k_corners);
-    const PieceT first = Elements::clip(t, t_faces, k_corners, beyond);
     if (first.n > 0) {
       hint = start;
       queue_.clear();
