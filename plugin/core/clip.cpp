@@ -67,7 +67,13 @@ Piece clip(const Point a[3], const Point b[3]) {
 }
 
 Piece clip(const Point a[3], const Point b[3], unsigned& beyond) {
+  Rest rest;
+  return clip(a, b, beyond, rest);
+}
+
+Piece clip(const Point a[3], const Point b[3], unsigned& beyond, Rest& rest) {
   Piece out;
+  rest.edge = -1;
   beyond = 0;
   // side_ab[j][i]: side of a[i] with respect to edge b[j] -> b[j+1]; side_ba[i][j] likewise.
   int side_ab[3][3], side_ba[3][3];
@@ -109,11 +115,24 @@ Piece clip(const Point a[3], const Point b[3], unsigned& beyond) {
             proper = orient2d(a[i], a[i1], b[j]) * orient2d(a[i], a[i1], b[j1]) < 0;
         }
       if (proper) {
+        Piece& beyond_line = rest.piece;
+        beyond_line.n = 0;
+        rest.corners = 0;
         for (int i = 0; i < 3; ++i) {
           const int i1 = (i + 1) % 3;
-          if (side[i] > 0) out.v[out.n++] = a[i];
-          if (side[i] != side[i1]) out.v[out.n++] = crossing(a[i], a[i1], b[j], b[j1]);
+          if (side[i] > 0) {
+            out.v[out.n++] = a[i];
+          } else {
+            beyond_line.v[beyond_line.n++] = a[i];
+            rest.corners |= 1u << i;
+          }
+          if (side[i] != side[i1]) {
+            const Point x = crossing(a[i], a[i1], b[j], b[j1]);
+            out.v[out.n++] = x;
+            beyond_line.v[beyond_line.n++] = x;
+          }
         }
+        rest.edge = j;
         return out;
       }
     }

@@ -34,6 +34,17 @@ Piece clip(const Point a[3], const Point b[3]);
 // when b lies in closed a it is b: both without constructing a point.
 Piece clip(const Point a[3], const Point b[3], unsigned& beyond);
 
+// What clip tells of the rest of a when it finds a ∩ b = a ∩ (inner side of the line of b's edge j): a
+// reaches beyond that line only, with no vertex of a on it, and b's edge crosses a's two cut edges properly.
+// The rest, a ∩ (outer side), is then a's vertices beyond the line and the same two crossings (bit for bit:
+// crossing is canonical), counter-clockwise; edge = -1 when clip found a ∩ b otherwise.
+struct Rest {
+  int edge = -1;
+  unsigned corners = 0;  // bit i: vertex i of a lies beyond the line
+  Piece piece;
+};
+Piece clip(const Point a[3], const Point b[3], unsigned& beyond, Rest& rest);
+
 // The point where segments [p, q] and [r, s] cross (they must cross properly), canonical in the order of
 // the four arguments and of the two segments.
 Point crossing(Point p, Point q, Point r, Point s);

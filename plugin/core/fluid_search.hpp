@@ -35,6 +35,14 @@ struct Triangles {
   static Piece clip(const Point t[3], const Faces&, const Point k[3], unsigned& beyond) {
     return dlmfsi::clip(t, k, beyond);
   }
+  using Rest = dlmfsi::Rest;
+  static Piece clip(const Point t[3], const Faces&, const Point k[3], unsigned& beyond, Rest& rest) {
+    return dlmfsi::clip(t, k, beyond, rest);
+  }
+  // The facet (opposite vertex i) of the rest's edge, or -1; the rest; t's corners in it.
+  static int rest_facet(const Rest& r) { return r.edge < 0 ? -1 : (r.edge + 2) % 3; }
+  static const Piece* rest_piece(const Rest& r) { return &r.piece; }
+  static unsigned rest_corners(const Rest& r) { return r.corners; }
   // The edge opposite vertex i is clip's edge i + 1.
   static bool reaches_beyond(unsigned beyond, int i) { return beyond & (1u << ((i + 1) % 3)); }
 };

@@ -34,6 +34,13 @@ struct Tetrahedra {
   static Piece3 clip(const Point3 t[4], const TetFaces& faces, const Point3 k[4], unsigned& beyond) {
     return dlmfsi::clip(t, faces, k, beyond);
   }
+  struct Rest {};  // the clipper tells nothing of t beyond a face
+  static Piece3 clip(const Point3 t[4], const TetFaces& faces, const Point3 k[4], unsigned& beyond, Rest&) {
+    return dlmfsi::clip(t, faces, k, beyond);
+  }
+  static int rest_facet(const Rest&) { return -1; }
+  static const Piece3* rest_piece(const Rest&) { return nullptr; }
+  static unsigned rest_corners(const Rest&) { return 0; }
   static bool reaches_beyond(unsigned beyond, int i) { return beyond & (1u << i); }
 };
 

@@ -13,7 +13,9 @@ namespace dlmfsi {
 // side(mesh, k, i, p) (the exact sign of p with respect to facet i of element k, opposite vertex i: +1 on
 // the element's side), max_walk_steps(n), kClipHintFirst (does for_each_piece clip t against the hint
 // before it locates t's centroid?), Faces (what clip prepares once from t), clip(t, faces, k, beyond)
-// and reaches_beyond(beyond, i) (t reaches beyond facet i of k).
+// and reaches_beyond(beyond, i) (t reaches beyond facet i of k), and Rest with clip(t, faces, k, beyond,
+// rest), rest_facet(rest), rest_piece(rest), rest_corners(rest): what clip tells of the part of t beyond one
+// facet of k when t ∩ k is t's part on the inner side of that facet's line or plane (facet -1 otherwise).
 template <class Elements>
 class FluidSearchOf {
  public:
@@ -40,6 +42,14 @@ class FluidSearchOf {
   void for_each_piece(const PointT t[kCorners], int& hint, Visit&& visit);
 
  private:
+  // Do the corners of t in mask (bit i: corner i) lie in the closed element k?
+  bool holds_corners(int k, const PointT t[kCorners], unsigned mask) const {
+    for (int c = 0; c < kCorners; ++c)
+      if (mask & (1u << c))
+        for (int i = 0; i < kCorners; ++i)
+          if (Elements::side(fluid_, k, i, t[c]) < 0) return false;
+    return true;
+  }
   bool mark(int k) {
     if (stamp_of_[k] == stamp_) return false;
     stamp_of_[k] = stamp_;
@@ -100,21 +110,33 @@ void FluidSearchOf<Elements>::for_each_piece(const PointT t[kCorners], int& hint
   // else the one holding t's centroid.
   int start = -1;
   PieceT first;
+  typename Elements::Rest rest;
   if (Elements::kClipHintFirst && hint >= 0 && hint < fluid_.size()) {
     fluid_.corners(hint, k_corners);
-    first = Elements::clip(t, t_faces, k_corners, beyond);
+    first = Elements::clip(t, t_faces, k_corners, beyond, rest);
     if (first.n > 0) start = hint;
   }
   if (start < 0) {
     start = locate(Elements::centroid(t), hint);
     if (start >= 0) {
       fluid_.corners(start, k_corners);
-      first = Elements::clip(t, t_faces, k_corners, beyond);
+      first = Elements::clip(t, t_faces, k_corners, beyond, rest);
     }
   }
   if (start >= 0) {
     if (first.n > 0) {
       hint = start;
+      // t ∩ start is t's part on the inner side of one facet's line: t lies in start and the neighbour
+      // across that facet when t's corners beyond it lie in that closed neighbour (the rest's other corners
+      // are on the facet, where it crosses t's edges properly), and then the two pieces are all (the mesh
+      // conforms).
+      const int facet = Elements::rest_facet(rest);
+      const int across = facet >= 0 ? fluid_.neighbours[start][facet] : -1;
+      if (across >= 0 && holds_corners(across, t, Elements::rest_corners(rest))) {
+        visit(start, first);
+        visit(across, *Elements::rest_piece(rest));
+        return;
+      }
       queue_.clear();
       queue_.push_back(start);
       mark(start);

@@ -5,8 +5,9 @@
 namespace dlmfsi {
 
 // Area, centroid and central second moments M = int_P (y - c)(y - c)^T dy of a convex piece, from its fan
-// in coordinates relative to the first corner: the triangle (0, p, q) of area a has int y = a (p + q) / 3
-// and int y y^T = a/6 (p p^T + q q^T + (p q^T + q p^T)/2).
+// in coordinates relative to the first corner: the triangle (0, p, q) of area a = (p x q) / 2 has
+// int y = a (p + q) / 3 and int y y^T = a/6 (p p^T + q q^T + (p q^T + q p^T)/2). The fan's sums are taken
+// with the factors 1/6, 1/12 and 1/24 left out, and divided once at the end.
 struct MomentIntegrator::Moments {
   double area = 0;
   Point centroid;
@@ -14,23 +15,25 @@ struct MomentIntegrator::Moments {
 
   explicit Moments(const Piece& piece) {
     const Point o = piece.v[0];
-    double cx = 0, cy = 0, sxx = 0, sxy = 0, syy = 0;
+    // twice the area; 6 int y; 12 int x^2, 12 int y^2; 24 int x y
+    double a2 = 0, cx = 0, cy = 0, sxx = 0, sxy = 0, syy = 0;
     for (int t = 1; t + 1 < piece.n; ++t) {
       const Point p = piece.v[t] - o, q = piece.v[t + 1] - o;
-      const double a = 0.5 * cross(p, q);
-      area += a;
-      cx += a * (p.x + q.x) / 3;
-      cy += a * (p.y + q.y) / 3;
-      sxx += a / 6 * (p.x * p.x + q.x * q.x + p.x * q.x);
-      syy += a / 6 * (p.y * p.y + q.y * q.y + p.y * q.y);
-      sxy += a / 12 * (2 * p.x * p.y + 2 * q.x * q.y + p.x * q.y + q.x * p.y);
+      const double c = cross(p, q);
+      a2 += c;
+      cx += c * (p.x + q.x);
+      cy += c * (p.y + q.y);
+      sxx += c * (p.x * p.x + q.x * q.x + p.x * q.x);
+      syy += c * (p.y * p.y + q.y * q.y + p.y * q.y);
+      sxy += c * (2 * p.x * p.y + 2 * q.x * q.y + p.x * q.y + q.x * p.y);
     }
+    area = 0.5 * a2;
     if (!(area > 0)) return;
-    cx /= area;
-    cy /= area;
-    mxx = sxx - area * cx * cx;  // about the centroid
-    myy = syy - area * cy * cy;
-    mxy = sxy - area * cx * cy;
+    cx /= 3 * a2;  // the centroid relative to o: (6 int y) / (6 area)
+    cy /= 3 * a2;
+    mxx = sxx / 12 - area * cx * cx;  // about the centroid
+    myy = syy / 12 - area * cy * cy;
+    mxy = sxy / 24 - area * cx * cy;
     centroid = {o.x + cx, o.y + cy};
   }
 };
