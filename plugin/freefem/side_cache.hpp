@@ -57,7 +57,18 @@ struct SolidCacheOf : SideCache<Space, Basis, Side> {
   const Side& get(const Space& vs, const std::vector<int>& comps) {
     if (this->holds(vs, comps)) return *this->side;
     fits.clear();
-    return this->make(vs, comps);
+    const Side& made = this->make(vs, comps);
+    this->basis->tabulate_dofs();
+    return made;
+  }
+
+  // The kept Basis of the map's space vm, its dofs tabulated (the solid side's space, or that of a fit), or
+  // null when none is kept.
+  const Basis* map_space(const Space& vm) const {
+    if (this->side && &vm == this->space && this->id == vm) return this->basis.get();
+    for (const MapFit& f : fits)
+      if (f.space == &vm && f.id == vm) return f.basis.get();
+    return nullptr;
   }
 
   // Once per call, before map_fit: keeps the fits of the last call's map, so that the cache stays small and
@@ -75,6 +86,7 @@ struct SolidCacheOf : SideCache<Space, Basis, Side> {
         return fits.back().fit.get();
       }
     MapFit f{&vm, vm, comp, degree, std::make_unique<Basis>(vm), nullptr};
+    f.basis->tabulate_dofs();
     f.fit = std::make_unique<Fit>(*f.basis, this->side->mesh(), degree, std::vector<int>{comp});
     fits.push_back(std::move(f));
     return fits.back().fit.get();

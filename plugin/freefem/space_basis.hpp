@@ -4,6 +4,7 @@
 #pragma once
 #include "ff++.hpp"
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -24,8 +25,22 @@ class SpaceBasisOf : public dlmfsi::BasisOf<D> {
     last = vh_.TFE[0]->end_dfcomp[c];
   }
   void dofs(int k, int* global) const override {
+    if (!table_.empty()) {
+      const int* d = &table_[static_cast<std::size_t>(k) * nd_];
+      std::copy(d, d + nd_, global);
+      return;
+    }
     const auto K = vh_[k];
     for (int df = 0; df < nd_; ++df) global[df] = K(df);
+  }
+  // Keeps every element's dofs, so that dofs() reads them instead of asking FreeFEM for the element (a
+  // kept space whose map asks for all of them on every call of a time loop).
+  void tabulate_dofs() {
+    table_.resize(static_cast<std::size_t>(vh_.Th.nt) * nd_);
+    for (int k = 0; k < vh_.Th.nt; ++k) {
+      const auto K = vh_[k];
+      for (int df = 0; df < nd_; ++df) table_[static_cast<std::size_t>(k) * nd_ + df] = K(df);
+    }
   }
 
  protected:
@@ -39,6 +54,7 @@ class SpaceBasisOf : public dlmfsi::BasisOf<D> {
   }
   const Space& vh_;
   int nd_, nc_;
+  std::vector<int> table_;  // tabulate_dofs(): element k's dofs from k * nd_ on
 };
 
 }  // namespace dlmfsi_ff
