@@ -37,18 +37,14 @@ Point crossing(Point p, Point q, Point r, Point s) {
 
 namespace {
 
-// side[j][i] = orient2d(e[j], e[j + 1], p[i]) for the nine pairs: the floating-point filter of orient2d
-// evaluated for all nine without a branch (a sign decided by the data is a branch mispredicted about
-// half the time), the exact evaluation for the undecided ones.
+// side[j][i] = orient2d(e[j], e[j + 1], p[i]) for the nine pairs: orient2d's floating-point filter for all
+// nine first (without a branch), then the exact evaluation for the undecided ones.
 void filtered_sides(const Point e[3], const Point p[3], int side[3][3]) {
   bool undecided = false;
   for (int j = 0; j < 3; ++j) {
     const Point u = e[j], v = e[(j + 1) % 3];
     for (int i = 0; i < 3; ++i) {
-      const double left = (u.x - p[i].x) * (v.y - p[i].y), right = (u.y - p[i].y) * (v.x - p[i].x);
-      const double det = left - right;
-      const double bound = 3.3306690738754716e-16 * (std::fabs(left) + std::fabs(right));
-      const int s = bound >= 0x1p-960 ? (det > bound) - (-det > bound) : 0;
+      const int s = filtered_sign((u.x - p[i].x) * (v.y - p[i].y), (u.y - p[i].y) * (v.x - p[i].x));
       side[j][i] = s;
       undecided |= s == 0;
     }
