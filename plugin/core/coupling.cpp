@@ -76,7 +76,7 @@ class Assembler {
   void solid_triangle(int ks, std::vector<Triplet>* const* lists) {
     MappedTriangle mt;
     mt.prepare(solid_.mesh(), map_, ks);
-    block_.start(solid_.dofs(ks));
+    block_.start(solid_.rows(ks));
     ++report.solid_triangles;
     (mt.affine ? report.affine : (mt.straight ? report.straight : report.curved))++;
     const double image_area = 0.5 * area2(mt.image[0], mt.image[1], mt.image[2]);
@@ -96,7 +96,7 @@ class Assembler {
   // Hints for the caches: the data of solid triangle k found by its number, and its corners.
   void prefetch_numbered(int k) const {
     __builtin_prefetch(&solid_.mesh().triangles[k]);
-    __builtin_prefetch(solid_.dofs(k));
+    __builtin_prefetch(solid_.rows(k));
     solid_.basis().prefetch(k);
     map_.prefetch(k);
   }
@@ -154,7 +154,7 @@ void mark_later_rows(const SolidSide& solid, const std::vector<int>& elements, i
   const long long count = static_cast<long long>(elements.size());
   for (int t = 0; t < threads; ++t)
     for (long long e = count * t / threads; e < count * (t + 1) / threads; ++e) {
-      const int* d = solid.dofs(elements[e]);
+      const int* d = solid.rows(elements[e]);
       for (int i = 0; i < dofs; ++i) {
         int& o = owner[d[i]];
         if (o < 0) o = t;
@@ -297,12 +297,46 @@ const CsrMatrix& CouplingAssembly::assemble_checked(const FluidSide& fluid, cons
 
   for (const auto& a : assemblers) add_counts(a->report, total);
   check_outside(opt, fluid.scale(), total);
-  const CsrMatrix& m = in_place ? matrix_.build_on_last_pattern(misses_.data(), later_.data(), threads)
-                                : matrix_.build_by_range(ranges, fluid.space().dof_count(), triplets_.data(), threads);
+  const CsrMatrix& by_rows =
+      in_place ? matrix_.build_on_last_pattern(misses_.data(), later_.data(), threads)
+               : matrix_.build_by_range(ranges, fluid.space().dof_count(), triplets_.data(), threads);
+  const CsrMatrix& m = in_dof_order(by_rows, solid);
   check_finite(m, opt);
   total.seconds = seconds_since(start);
   if (report) *report = total;
   return m;
+}
+
+const CsrMatrix& CouplingAssembly::in_dof_order(const CsrMatrix& by_rows, const SolidSide& solid) {
+  if (solid.rows_are_dofs()) {
+    output_ = nullptr;
+    return by_rows;
+  }
+  // row d of the result is row row_of_dof[d] of the assembly's matrix
+  const std::vector<int>& row_of_dof = solid.row_of_dof();
+  CsrMatrix& out = in_dof_order_;
+  out.rows = by_rows.rows;
+  out.cols = by_rows.cols;
+  out.start.resize(static_cast<size_t>(by_rows.rows) + 1);
+  out.column.resize(by_rows.column.size());
+  out.value.resize(by_rows.value.size());
+  out.start[0] = 0;
+  for (int d = 0; d < by_rows.rows; ++d) {
+    const int r = row_of_dof[d], first = by_rows.start[r], last = by_rows.start[r + 1], at = out.start[d];
+    std::copy(by_rows.column.begin() + first, by_rows.column.begin() + last, out.column.begin() + at);
+    std::copy(by_rows.value.begin() + first, by_rows.value.begin() + last, out.value.begin() + at);
+    out.start[d + 1] = at + (last - first);
+  }
+  output_ = &out;
+  return out;
+}
+
+CsrMatrix CouplingAssembly::release() {
+  if (output_) {
+    output_ = nullptr;
+    return std::exchange(in_dof_order_, CsrMatrix{});
+  }
+  return matrix_.release();
 }
 
 CsrMatrix assemble_coupling(const FluidSide& fluid, const SolidSide& solid, const SolidMap& map,

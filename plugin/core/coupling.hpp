@@ -66,7 +66,9 @@ CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const M
 // triplets fall on the last call's pattern (CsrBuilder). The blocks are summed straight into the last
 // call's matrix where their entries lie on its pattern, and only the others become triplets
 // (CsrBuilder::sum_on_last_pattern); with threads, the rows that the elements of several threads meet are
-// summed after them, in order. The result is assemble_coupling's, bit for bit.
+// summed after them, in order. The rows are summed in the solid side's row order (SolidSide::rows: the rows
+// met in turn lie together in memory) and handed out in the multiplier's dof order. The result is
+// assemble_coupling's, bit for bit.
 class CouplingAssembly {
  public:
   CouplingAssembly();
@@ -78,7 +80,8 @@ class CouplingAssembly {
                             const CouplingOptions& options, CouplingReport* report = nullptr);
   // Did the last call keep the pattern of the one before (values written in place)?
   bool kept_pattern() const { return matrix_.kept_pattern(); }
-  CsrMatrix release() { return matrix_.release(); }
+  // The last call's matrix, moved out.
+  CsrMatrix release();
 
  private:
   friend struct AssemblyAccess;  // assemble_coupling's other forms, which check the options themselves
@@ -95,7 +98,12 @@ class CouplingAssembly {
   // what the rows summed later were marked for (they depend on the solid side, the part and the threads
   // only, not on the map): solid side serial, part, parts, threads; serial 0 when none are marked
   long later_for_[4] = {0, 0, 0, 0};
-  CsrBuilder matrix_;
+  CsrBuilder matrix_;  // rows in the solid side's row order (SolidSide::rows)
+  // The assembly's matrix with its rows in the multiplier's dof order (kept buffers), unless the two orders
+  // agree; output_: the one handed out (null: matrix_'s).
+  const CsrMatrix& in_dof_order(const CsrMatrix& by_rows, const SolidSide& solid);
+  CsrMatrix in_dof_order_;
+  const CsrMatrix* output_ = nullptr;
 };
 
 }  // namespace dlmfsi

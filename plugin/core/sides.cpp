@@ -1,5 +1,6 @@
 #include "sides.hpp"
 
+#include <string>
 #include <utility>
 
 #include "errors.hpp"
@@ -34,7 +35,26 @@ SolidSide::SolidSide(Mesh mesh, const Basis& multiplier, const std::vector<int>&
                polynomial_degree(multiplier, components))),
       basis_(multiplier, mesh_, degree_, components), order_(morton_order(mesh_)),
       dofs_(static_cast<size_t>(mesh_.size()) * multiplier.local_dofs()) {
-  for (int k = 0; k < mesh_.size(); ++k) space_.dofs(k, &dofs_[static_cast<size_t>(k) * multiplier.local_dofs()]);
+  const size_t local = static_cast<size_t>(multiplier.local_dofs());
+  for (int k = 0; k < mesh_.size(); ++k) space_.dofs(k, &dofs_[k * local]);
+  // The rows in order of first use along the triangles' order; dofs no triangle uses last.
+  const int count = multiplier.dof_count();
+  row_of_dof_.assign(count, -1);
+  dof_of_row_.resize(count);
+  int next = 0;
+  auto number = [&](int d) {
+    if (d < 0 || d >= count)
+      throw Error("the multiplier space gives dof " + std::to_string(d) + " outside 0.." + std::to_string(count - 1));
+    if (row_of_dof_[d] >= 0) return;
+    row_of_dof_[d] = next;
+    dof_of_row_[next++] = d;
+  };
+  for (int k : order_)
+    for (size_t i = 0; i < local; ++i) number(dofs_[k * local + i]);
+  for (int d = 0; d < count; ++d) number(d);
+  rows_.resize(dofs_.size());
+  for (size_t i = 0; i < dofs_.size(); ++i) rows_[i] = row_of_dof_[dofs_[i]];
+  for (int d = 0; d < count && rows_are_dofs_; ++d) rows_are_dofs_ = row_of_dof_[d] == d;
 }
 
 }  // namespace dlmfsi

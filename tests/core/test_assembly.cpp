@@ -3,8 +3,10 @@
 // written in place exactly when the pattern is the last call's. And the threads of one call (run_shares).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
+#include <random>
 #include <thread>
 #include <vector>
 
@@ -156,5 +158,70 @@ TEST(RunShares, EachWorkerIsMadeOnTheThreadThatRunsIt) {
       total += workers[t]->count;
     }
     EXPECT_EQ(total, static_cast<int>(elements.size()));
+  }
+}
+
+// The assembly sums in rows of its own order (the multiplier dofs in order of first use along the solid
+// triangles' order) and hands the matrix out in the multiplier space's dof order: the same solid with its
+// vertices, hence its P1 dofs, numbered at random gives the same rows, each under its vertex's new number, bit
+// for bit; one-off calls, a time loop's calls (in place) and two threads alike.
+TEST(CouplingAssembly, RowsFollowTheMultipliersDofNumbering) {
+  const Mesh fluid_mesh = test::grid_mesh(16, 16, 0, 0, 1, 1, true);
+  const Mesh solid = test::grid_mesh(11, 9, 0.3, 0.3, 0.4, 0.35);
+  Mesh shuffled = solid;  // the same triangles, their vertices renumbered: vertex v becomes number_of[v]
+  std::vector<int> number_of(solid.vertices.size());
+  for (size_t v = 0; v < number_of.size(); ++v) number_of[v] = static_cast<int>(v);
+  std::mt19937 rng(5);
+  std::shuffle(number_of.begin(), number_of.end(), rng);
+  for (size_t v = 0; v < number_of.size(); ++v) shuffled.vertices[number_of[v]] = solid.vertices[v];
+  for (auto& t : shuffled.triangles)
+    for (int& v : t) v = number_of[v];
+  shuffled.build_adjacency();
+  const test::P1 vf(fluid_mesh), vs(solid), vs_shuffled(shuffled);
+  CouplingOptions opt;
+  opt.c1 = 0.3;
+  const FluidSide fluid(fluid_mesh, vf, opt.fluid_components);
+  const SolidSide side(solid, vs, opt.solid_components), side_shuffled(shuffled, vs_shuffled, opt.solid_components);
+  ASSERT_FALSE(side_shuffled.rows_are_dofs());
+  std::vector<double> star_area(solid.vertices.size(), 0.0);
+  for (const auto& t : solid.triangles)
+    for (int v : t)
+      star_area[v] += 0.5 * area2(solid.vertices[t[0]], solid.vertices[t[1]], solid.vertices[t[2]]);
+  CouplingAssembly loop, loop_shuffled;
+  for (const int threads : {1, 2, 1}) {
+    for (const double angle : {0.1, 0.12}) {
+      const Rotated r(solid, angle, 0.01);
+      std::vector<double> x(r.x.size()), y(r.y.size());
+      for (size_t v = 0; v < x.size(); ++v) {
+        x[number_of[v]] = r.x[v];
+        y[number_of[v]] = r.y[v];
+      }
+      const FieldMap map(solid, vs, r.x.data(), 0, vs, r.y.data(), 0);
+      const FieldMap map_shuffled(shuffled, vs_shuffled, x.data(), 0, vs_shuffled, y.data(), 0);
+      opt.threads = threads;
+      const CsrMatrix want = assemble_coupling(fluid, side, map, opt);
+      // each row against its own vertex: the fluid's P1 functions sum to 1, so row v sums to c2 int psi_v ds, a
+      // third of the area of v's triangles in the reference configuration
+      for (int v = 0; v < want.rows; ++v) {
+        double sum = 0;
+        for (int e = want.start[v]; e < want.start[v + 1]; ++e) sum += want.value[e];
+        EXPECT_NEAR(sum, opt.c2 * star_area[v] / 3, 1e-15) << "vertex " << v;
+      }
+      // row v of want is row number_of[v] of got (renumbered), bit for bit
+      auto check = [&](const CsrMatrix& got, bool renumbered, const char* what) {
+        ASSERT_EQ(got.rows, want.rows) << what;
+        for (int v = 0; v < want.rows; ++v) {
+          const int row = renumbered ? number_of[v] : v;
+          const std::vector<int> cols(want.column.begin() + want.start[v], want.column.begin() + want.start[v + 1]);
+          const std::vector<int> got_cols(got.column.begin() + got.start[row], got.column.begin() + got.start[row + 1]);
+          ASSERT_EQ(got_cols, cols) << what << ": the row of vertex " << v;
+          for (int e = 0; e < want.start[v + 1] - want.start[v]; ++e)
+            ASSERT_EQ(got.value[got.start[row] + e], want.value[want.start[v] + e]) << what << ": vertex " << v;
+        }
+      };
+      check(assemble_coupling(fluid, side_shuffled, map_shuffled, opt), true, "one-off, shuffled");
+      check(loop_shuffled.assemble(fluid, side_shuffled, map_shuffled, opt), true, "loop, shuffled");
+      check(loop.assemble(fluid, side, map, opt), false, "loop");
+    }
   }
 }
