@@ -7,6 +7,7 @@
 #include <memory>
 #include <utility>
 
+#include "buffer_room.hpp"
 #include "component_pairs.hpp"
 #include "errors.hpp"
 #include "integrator.hpp"
@@ -318,6 +319,8 @@ const CsrMatrix& CouplingAssembly::in_dof_order(const CsrMatrix& by_rows, const 
   out.rows = by_rows.rows;
   out.cols = by_rows.cols;
   out.start.resize(static_cast<size_t>(by_rows.rows) + 1);
+  room(out.column, by_rows.column.size());
+  room(out.value, by_rows.value.size());
   out.column.resize(by_rows.column.size());
   out.value.resize(by_rows.value.size());
   out.start[0] = 0;
