@@ -40,14 +40,11 @@ SolidSide::SolidSide(Mesh mesh, const Basis& multiplier, const std::vector<int>&
   // The rows in order of first use along the triangles' order; dofs no triangle uses last.
   const int count = multiplier.dof_count();
   row_of_dof_.assign(count, -1);
-  dof_of_row_.resize(count);
   int next = 0;
   auto number = [&](int d) {
     if (d < 0 || d >= count)
       throw Error("the multiplier space gives dof " + std::to_string(d) + " outside 0.." + std::to_string(count - 1));
-    if (row_of_dof_[d] >= 0) return;
-    row_of_dof_[d] = next;
-    dof_of_row_[next++] = d;
+    if (row_of_dof_[d] < 0) row_of_dof_[d] = next++;
   };
   for (int k : order_)
     for (size_t i = 0; i < local; ++i) number(dofs_[k * local + i]);

@@ -68,10 +68,9 @@ class SolidSide {
   // The global multiplier dofs of triangle k (space().local_dofs() of them).
   const int* dofs(int k) const { return &dofs_[static_cast<size_t>(k) * space_.local_dofs()]; }
   // The same as rows of the assembly's matrix: the dofs numbered in order of first use along order(), so that
-  // the rows the triangles add to in turn lie close together in memory, whatever the space's numbering (row r
-  // is dof dof_of_row()[r]; rows_are_dofs() when that is the identity).
+  // the rows the triangles add to in turn lie close together in memory, whatever the space's numbering (dof d
+  // is row row_of_dof()[d]; rows_are_dofs() when that is the identity).
   const int* rows(int k) const { return &rows_[static_cast<size_t>(k) * space_.local_dofs()]; }
-  const std::vector<int>& dof_of_row() const { return dof_of_row_; }
   const std::vector<int>& row_of_dof() const { return row_of_dof_; }
   bool rows_are_dofs() const { return rows_are_dofs_; }
   long serial() const { return serial_; }
@@ -85,7 +84,7 @@ class SolidSide {
   PolynomialBasis basis_;
   std::vector<int> order_;
   std::vector<int> dofs_;
-  std::vector<int> rows_, dof_of_row_, row_of_dof_;
+  std::vector<int> rows_, row_of_dof_;
   bool rows_are_dofs_ = true;
 };
 
