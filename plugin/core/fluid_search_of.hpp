@@ -118,7 +118,7 @@ void FluidSearchOf<Elements>::for_each_piece(const PointT t[kCorners], int& hint
   }
   if (start < 0) {
     start = locate(Elements::centroid(t), hint);
-    if (start >= 0) {
+    if (start >= 0 && !(Elements::kClipHintFirst && start == hint)) {  // the hint's piece is empty already
       fluid_.corners(start, k_corners);
       first = Elements::clip(t, t_faces, k_corners, beyond, rest);
     }
