@@ -309,10 +309,8 @@ const CsrMatrix& CouplingAssembly::assemble_checked(const FluidSide& fluid, cons
 }
 
 const CsrMatrix& CouplingAssembly::in_dof_order(const CsrMatrix& by_rows, const SolidSide& solid) {
-  if (solid.rows_are_dofs()) {
-    output_ = nullptr;
-    return by_rows;
-  }
+  handed_copy_ = !solid.rows_are_dofs();
+  if (!handed_copy_) return by_rows;
   // row d of the result is row row_of_dof[d] of the assembly's matrix
   const std::vector<int>& row_of_dof = solid.row_of_dof();
   CsrMatrix& out = in_dof_order_;
@@ -330,13 +328,12 @@ const CsrMatrix& CouplingAssembly::in_dof_order(const CsrMatrix& by_rows, const 
     std::copy(by_rows.value.begin() + first, by_rows.value.begin() + last, out.value.begin() + at);
     out.start[d + 1] = at + (last - first);
   }
-  output_ = &out;
   return out;
 }
 
 CsrMatrix CouplingAssembly::release() {
-  if (output_) {
-    output_ = nullptr;
+  if (handed_copy_) {
+    handed_copy_ = false;
     return std::exchange(in_dof_order_, CsrMatrix{});
   }
   return matrix_.release();

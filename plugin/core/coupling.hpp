@@ -100,10 +100,10 @@ class CouplingAssembly {
   long later_for_[4] = {0, 0, 0, 0};
   CsrBuilder matrix_;  // rows in the solid side's row order (SolidSide::rows)
   // The assembly's matrix with its rows in the multiplier's dof order (kept buffers), unless the two orders
-  // agree; output_: the one handed out (null: matrix_'s).
+  // agree; handed_copy_: the last call handed out in_dof_order_ (else matrix_'s).
   const CsrMatrix& in_dof_order(const CsrMatrix& by_rows, const SolidSide& solid);
   CsrMatrix in_dof_order_;
-  const CsrMatrix* output_ = nullptr;
+  bool handed_copy_ = false;
 };
 
 }  // namespace dlmfsi

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "basis.hpp"
@@ -36,11 +37,9 @@ class SpaceBasisOf : public dlmfsi::BasisOf<D> {
   // Keeps every element's dofs, so that dofs() reads them instead of asking FreeFEM for the element (a
   // kept space whose map asks for all of them on every call of a time loop).
   void tabulate_dofs() {
-    table_.resize(static_cast<std::size_t>(vh_.Th.nt) * nd_);
-    for (int k = 0; k < vh_.Th.nt; ++k) {
-      const auto K = vh_[k];
-      for (int df = 0; df < nd_; ++df) table_[static_cast<std::size_t>(k) * nd_ + df] = K(df);
-    }
+    std::vector<int> table(static_cast<std::size_t>(vh_.Th.nt) * nd_);
+    for (int k = 0; k < vh_.Th.nt; ++k) dofs(k, &table[static_cast<std::size_t>(k) * nd_]);
+    table_ = std::move(table);
   }
 
  protected:
