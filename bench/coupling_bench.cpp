@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
     const long faults = minor_faults();
     const std::clock_t c0 = std::clock();
     t0 = clock();
-    const FieldMap map(solid, vs, mx.data(), 0, vs, my.data(), 0, &map_fit, &map_fit);
+    const FieldMap map(solid, vs, mx.data(), 0, vs, my.data(), 0, &map_fit, &map_fit, threads);
     const CsrMatrix& b = assembly.assemble(fluid_side, solid_side, map, opt, &report);
     wall.push_back(since(t0));
     cpu.push_back(static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC);

@@ -13,6 +13,7 @@
 #include "integrator.hpp"
 #include "kept_search.hpp"
 #include "local_block.hpp"
+#include "on_threads.hpp"
 #include "run_shares.hpp"
 #include "validation.hpp"
 
@@ -301,14 +302,14 @@ const CsrMatrix& CouplingAssembly::assemble_checked(const FluidSide& fluid, cons
   const CsrMatrix& by_rows =
       in_place ? matrix_.build_on_last_pattern(misses_.data(), later_.data(), threads)
                : matrix_.build_by_range(ranges, fluid.space().dof_count(), triplets_.data(), threads);
-  const CsrMatrix& m = in_dof_order(by_rows, solid);
+  const CsrMatrix& m = in_dof_order(by_rows, solid, threads);
   check_finite(m, opt);
   total.seconds = seconds_since(start);
   if (report) *report = total;
   return m;
 }
 
-const CsrMatrix& CouplingAssembly::in_dof_order(const CsrMatrix& by_rows, const SolidSide& solid) {
+const CsrMatrix& CouplingAssembly::in_dof_order(const CsrMatrix& by_rows, const SolidSide& solid, int threads) {
   handed_copy_ = !solid.rows_are_dofs();
   if (!handed_copy_) return by_rows;
   // row d of the result is row row_of_dof[d] of the assembly's matrix
@@ -323,11 +324,16 @@ const CsrMatrix& CouplingAssembly::in_dof_order(const CsrMatrix& by_rows, const 
   out.value.resize(by_rows.value.size());
   out.start[0] = 0;
   for (int d = 0; d < by_rows.rows; ++d) {
-    const int r = row_of_dof[d], first = by_rows.start[r], last = by_rows.start[r + 1], at = out.start[d];
-    std::copy(by_rows.column.begin() + first, by_rows.column.begin() + last, out.column.begin() + at);
-    std::copy(by_rows.value.begin() + first, by_rows.value.begin() + last, out.value.begin() + at);
-    out.start[d + 1] = at + (last - first);
+    const int r = row_of_dof[d];
+    out.start[d + 1] = out.start[d] + by_rows.start[r + 1] - by_rows.start[r];
   }
+  on_shares(threads_for(threads, by_rows.rows, 4096), by_rows.rows, [&](int first_dof, int last_dof) {
+    for (int d = first_dof; d < last_dof; ++d) {
+      const int r = row_of_dof[d], first = by_rows.start[r], last = by_rows.start[r + 1], at = out.start[d];
+      std::copy(by_rows.column.begin() + first, by_rows.column.begin() + last, out.column.begin() + at);
+      std::copy(by_rows.value.begin() + first, by_rows.value.begin() + last, out.value.begin() + at);
+    }
+  });
   return out;
 }
 

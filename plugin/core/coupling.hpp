@@ -100,8 +100,8 @@ class CouplingAssembly {
   long later_for_[4] = {0, 0, 0, 0};
   CsrBuilder matrix_;  // rows in the solid side's row order (SolidSide::rows)
   // The assembly's matrix with its rows in the multiplier's dof order (kept buffers), unless the two orders
-  // agree; handed_copy_: the last call handed out in_dof_order_ (else matrix_'s).
-  const CsrMatrix& in_dof_order(const CsrMatrix& by_rows, const SolidSide& solid);
+  // agree (copied on threads); handed_copy_: the last call handed out in_dof_order_ (else matrix_'s).
+  const CsrMatrix& in_dof_order(const CsrMatrix& by_rows, const SolidSide& solid, int threads);
   CsrMatrix in_dof_order_;
   bool handed_copy_ = false;
 };

@@ -8,6 +8,7 @@
 
 #include "errors.hpp"
 #include "lattice.hpp"
+#include "on_threads.hpp"
 #include "polynomial_fit.hpp"
 #include "triangle_map.hpp"
 
@@ -25,40 +26,45 @@ int FieldMap::fit_degree(const Basis& space_x, int comp_x, const Basis& space_y,
 }
 
 FieldMap::FieldMap(const Mesh& solid, const Basis& space_x, const double* coef_x, int comp_x, const Basis& space_y,
-                   const double* coef_y, int comp_y, const PolynomialBasis* fit_x, const PolynomialBasis* fit_y) {
+                   const double* coef_y, int comp_y, const PolynomialBasis* fit_x, const PolynomialBasis* fit_y,
+                   int threads) {
   part_[0] = {&space_x, coef_x, comp_x, 0, 0};
   part_[1] = {&space_y, coef_y, comp_y, 0, 0};
   degree_ = fit_degree(space_x, comp_x, space_y, comp_y);
   for (auto& p : part_) p.space->component_dofs(p.comp, p.first, p.last);
   if (degree_ < 0) return;  // not polynomial (or constant): evaluate the map itself
   // X on triangle k = sum over the component's dofs of (dof value) * (basis polynomial).
-  const int nm = monomial_count(degree_);
-  monomial_coef_.assign(static_cast<size_t>(solid.size()) * 2 * nm, 0.0);
-  std::unique_ptr<PolynomialBasis> own;
-  const PolynomialBasis* fit = nullptr;
+  const PolynomialBasis* fit[2] = {nullptr, nullptr};
+  std::unique_ptr<PolynomialBasis> own[2];
   for (int a = 0; a < 2; ++a) {
     const Part& p = part_[a];
     const PolynomialBasis* given = a == 0 ? fit_x : fit_y;
     if (given && given->degree() == degree_) {
-      fit = given;
-    } else if (a == 0 || p.space != part_[0].space || p.comp != part_[0].comp) {
-      // X and Y are often the same space and component (two functions of one scalar space): one fit.
-      own = std::make_unique<PolynomialBasis>(*p.space, solid, degree_, std::vector<int>{p.comp});
-      fit = own.get();
+      fit[a] = given;
+    } else if (a == 1 && p.space == part_[0].space && p.comp == part_[0].comp) {
+      fit[a] = fit[0];  // X and Y are often the same space and component (two functions of one scalar space)
+    } else {
+      own[a] = std::make_unique<PolynomialBasis>(*p.space, solid, degree_, std::vector<int>{p.comp});
+      fit[a] = own[a].get();
     }
-    const PolynomialBasis& poly = *fit;
-    if (!poly.fitted()) {
+    if (!fit[a]->fitted()) {
       degree_ = -1;
-      monomial_coef_.clear();
       return;
     }
-    add_field_monomials(*p.space, p.coef, poly, nm, solid.size(), monomial_coef_, static_cast<size_t>(a) * nm,
-                        2 * static_cast<size_t>(nm));
   }
+  const int nm = monomial_count(degree_), size = solid.size();
+  monomial_coef_.reset(new double[static_cast<size_t>(size) * 2 * nm]);
+  on_shares(threads_for(threads, size, 8192), size, [&](int first, int last) {
+    const size_t per_element = 2 * static_cast<size_t>(nm);
+    std::fill(monomial_coef_.get() + first * per_element, monomial_coef_.get() + last * per_element, 0.0);
+    for (int a = 0; a < 2; ++a)
+      add_field_monomials(*part_[a].space, part_[a].coef, *fit[a], nm, first, last, monomial_coef_.get(),
+                          static_cast<size_t>(a) * nm, per_element);
+  });
 }
 
 bool FieldMap::coefficients(int k, double* cx, double* cy) const {
-  if (monomial_coef_.empty()) return false;
+  if (!monomial_coef_) return false;
   const int nm = monomial_count(degree_);
   const double* c = &monomial_coef_[static_cast<size_t>(k) * 2 * nm];
   std::copy(c, c + nm, cx);

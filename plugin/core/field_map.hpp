@@ -1,6 +1,6 @@
 // X given by finite element functions on the solid mesh.
 #pragma once
-#include <vector>
+#include <memory>
 
 #include "basis.hpp"
 #include "map.hpp"
@@ -13,12 +13,13 @@ namespace dlmfsi {
 // (two scalar functions, or two components of one vector function). For polynomial spaces the monomial
 // coefficients of X on every solid triangle are computed once, here, from the spaces' fits on the map's
 // components: fit_x and fit_y when the caller keeps them across calls (PolynomialBasis(space, solid,
-// fit_degree(...), {comp})), otherwise fitted here.
+// fit_degree(...), {comp})), otherwise fitted here. With threads > 1 they are computed on that many threads:
+// the spaces' dofs() must then be safe to call from several threads at once.
 class FieldMap : public SolidMap {
  public:
   FieldMap(const Mesh& solid, const Basis& space_x, const double* coef_x, int comp_x, const Basis& space_y,
            const double* coef_y, int comp_y, const PolynomialBasis* fit_x = nullptr,
-           const PolynomialBasis* fit_y = nullptr);
+           const PolynomialBasis* fit_y = nullptr, int threads = 1);
   // The degree the map is fitted to: the higher polynomial degree of the two components, or -1 when one is
   // not polynomial or the degree lies outside 1..6 (the map is then evaluated through the spaces). Throws
   // Error for a component out of range.
@@ -27,7 +28,7 @@ class FieldMap : public SolidMap {
   int degree() const override { return degree_; }
   bool coefficients(int k, double* cx, double* cy) const override;
   void prefetch(int k) const override {
-    if (!monomial_coef_.empty()) __builtin_prefetch(&monomial_coef_[static_cast<size_t>(k) * 2 * monomial_count(degree_)]);
+    if (monomial_coef_) __builtin_prefetch(&monomial_coef_[static_cast<size_t>(k) * 2 * monomial_count(degree_)]);
   }
 
  private:
@@ -38,7 +39,7 @@ class FieldMap : public SolidMap {
   };
   Part part_[2];
   int degree_ = -1;
-  std::vector<double> monomial_coef_;  // per triangle: x then y coefficients
+  std::unique_ptr<double[]> monomial_coef_;  // per triangle: x then y coefficients
 };
 
 }  // namespace dlmfsi

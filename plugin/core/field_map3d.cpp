@@ -7,6 +7,7 @@
 
 #include "errors.hpp"
 #include "lattice3d.hpp"
+#include "on_threads.hpp"
 #include "polynomial_fit.hpp"
 
 namespace dlmfsi {
@@ -29,7 +30,7 @@ int FieldMap3::fit_degree(const Basis3* const space[3], const int comp[3]) {
 }
 
 FieldMap3::FieldMap3(const Mesh3& solid, const Basis3* const space[3], const double* const coef[3], const int comp[3],
-                     const PolynomialBasis3* const fit[3]) {
+                     const PolynomialBasis3* const fit[3], int threads) {
   for (int a = 0; a < 3; ++a) {
     part_[a] = {space[a], coef[a], comp[a], 0, 0};
     space[a]->component_dofs(comp[a], part_[a].first, part_[a].last);
@@ -37,9 +38,8 @@ FieldMap3::FieldMap3(const Mesh3& solid, const Basis3* const space[3], const dou
   }
   degree_ = fit_degree(space, comp);
   if (degree_ < 0) return;  // not polynomial (or constant): evaluate the map itself
-  const int nm = monomial_count3(degree_);
-  monomial_coef_.assign(static_cast<size_t>(solid.size()) * 3 * nm, 0.0);
-  corner_exact_.assign(solid.size(), 1);
+  const int nm = monomial_count3(degree_), size = solid.size();
+  corner_exact_.assign(size, 1);
   std::unique_ptr<PolynomialBasis3> own[3];
   const PolynomialBasis3* used[3] = {nullptr, nullptr, nullptr};
   for (int a = 0; a < 3; ++a) {
@@ -58,7 +58,6 @@ FieldMap3::FieldMap3(const Mesh3& solid, const Basis3* const space[3], const dou
     const PolynomialBasis3& poly = *used[a];
     if (!poly.fitted()) {
       degree_ = -1;
-      monomial_coef_.clear();
       corner_exact_.clear();
       return;
     }
@@ -84,18 +83,24 @@ FieldMap3::FieldMap3(const Mesh3& solid, const Basis3* const space[3], const dou
         corner_dof_[a][i] = count == 1 && others_zero ? one : -1;
       }
     }
-    add_field_monomials(*p.space, p.coef, poly, nm, solid.size(), monomial_coef_, static_cast<size_t>(a) * nm,
-                        3 * static_cast<size_t>(nm));
-    for (int k = 0; k < solid.size(); ++k)
+    for (int k = 0; k < size; ++k)
       if (!poly.shared(k)) corner_exact_[k] = 0;
   }
+  monomial_coef_.reset(new double[static_cast<size_t>(size) * 3 * nm]);
+  on_shares(threads_for(threads, size, 8192), size, [&](int first, int last) {
+    const size_t per_element = 3 * static_cast<size_t>(nm);
+    std::fill(monomial_coef_.get() + first * per_element, monomial_coef_.get() + last * per_element, 0.0);
+    for (int a = 0; a < 3; ++a)
+      add_field_monomials(*part_[a].space, part_[a].coef, *used[a], nm, first, last, monomial_coef_.get(),
+                          static_cast<size_t>(a) * nm, per_element);
+  });
   for (int a = 0; a < 3; ++a)
     for (int i = 0; i < 4; ++i)
       if (corner_dof_[a][i] < 0) corner_exact_.assign(solid.size(), 0);
 }
 
 bool FieldMap3::coefficients(int k, double* cx, double* cy, double* cz) const {
-  if (monomial_coef_.empty()) return false;
+  if (!monomial_coef_) return false;
   const int nm = monomial_count3(degree_);
   const double* c = &monomial_coef_[static_cast<size_t>(k) * 3 * nm];
   std::copy(c, c + nm, cx);

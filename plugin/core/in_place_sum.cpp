@@ -18,8 +18,8 @@ void InPlaceSum::start_at_zero(CsrMatrix& m) {
   std::fill(m.value.begin(), m.value.end(), 0.0);
 }
 
-size_t InPlaceSum::count_set() const {
-  return static_cast<size_t>(std::count(flag_.begin(), flag_.end(), Flag::set));
+size_t InPlaceSum::count_set(size_t first, size_t last) const {
+  return static_cast<size_t>(std::count(flag_.begin() + first, flag_.begin() + last, Flag::set));
 }
 
 void InPlaceSum::sum_later(const std::vector<Triplet>* parts, std::size_t count, std::vector<Triplet>& misses) {

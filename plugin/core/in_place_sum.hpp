@@ -57,8 +57,8 @@ class InPlaceSum {
   void sum_later(const std::vector<Triplet>* parts, std::size_t count, std::vector<Triplet>& misses);
   // Was entry k of m set in this summation?
   bool set(size_t k) const { return flag_[k] == Flag::set; }
-  // The entries set in this summation.
-  size_t count_set() const;
+  // The entries set in this summation, among entries first .. last - 1 of m.
+  size_t count_set(size_t first, size_t last) const;
 
  private:
   CsrMatrix* m_ = nullptr;

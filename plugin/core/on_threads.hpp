@@ -1,19 +1,24 @@
 // A few threads over the same task.
 #pragma once
+#include <algorithm>
 #include <exception>
 #include <thread>
 #include <vector>
 
+#include "thread_team.hpp"
+
 namespace dlmfsi {
 
 // Runs f(t) for t = 0 .. n - 1, each on its own thread (t = 0 on the calling one); rethrows a thread's
-// error once all have ended.
+// error once all have ended. The threads are the process's team (ThreadTeam), or started for this call
+// when the team is busy (a call from another thread, or from within f).
 template <class F>
 void on_threads(int n, F f) {
   if (n == 1) {
     f(0);
     return;
   }
+  if (ThreadTeam::shared().try_run(n, [&f](int t) { f(t); })) return;
   std::vector<std::exception_ptr> errors(n);
   auto run = [&](int t) {
     try {
@@ -34,6 +39,20 @@ void on_threads(int n, F f) {
   for (auto& th : pool) th.join();
   for (auto& e : errors)
     if (e) std::rethrow_exception(e);
+}
+
+// The threads worth starting, at most threads, for count items of which each thread should have at least
+// per_thread (starting a thread costs about as much as a few thousand light items).
+inline int threads_for(int threads, long long count, long long per_thread) {
+  return static_cast<int>(std::max(1LL, std::min<long long>(threads, count / per_thread)));
+}
+
+// Runs f(first, last) over n contiguous shares [first, last) of 0 .. count - 1, on n threads.
+template <class F>
+void on_shares(int n, int count, F f) {
+  on_threads(n, [&](int t) {
+    f(static_cast<int>(static_cast<long long>(count) * t / n), static_cast<int>(static_cast<long long>(count) * (t + 1) / n));
+  });
 }
 
 }  // namespace dlmfsi

@@ -142,20 +142,20 @@ inline std::vector<int> twin_functions(const std::vector<double>& coefficients, 
   return twin;
 }
 
-// A field's polynomials on the elements: out[first + k * stride + m] += the coefficient of monomial m, on
-// element k, of sum over the fitted functions f of values[global dof of f] * (function f), for the
-// elements of fit (Fit: PolynomialBasis or PolynomialBasis3 of degree nm monomials, fitted on space).
+// A field's polynomials on the elements [first, last): out[k * stride + offset + m] += the coefficient of
+// monomial m, on element k, of the sum over the fitted functions f of values[global dof of f] * (function
+// f) (Fit: PolynomialBasis or PolynomialBasis3 of nm monomials, fitted on space).
 template <int D, class Fit>
-void add_field_monomials(const BasisOf<D>& space, const double* values, const Fit& fit, int nm, int elements,
-                         std::vector<double>& out, std::size_t first, std::size_t stride) {
-  std::vector<int> dofs(space.local_dofs());
-  const int nc = space.components();
-  for (int k = 0; k < elements; ++k) {
+void add_field_monomials(const BasisOf<D>& space, const double* values, const Fit& fit, int nm, int first, int last,
+                     double* out, std::size_t offset, std::size_t stride) {
+  std::vector<int> dofs(space.local_dofs()), local_dof;
+  for (int f : fit.functions()) local_dof.push_back(f / space.components());
+  for (int k = first; k < last; ++k) {
     space.dofs(k, dofs.data());
     const double* c = fit.coefficients(k);
-    double* o = &out[first + k * stride];
-    for (int f : fit.functions()) {
-      const double value = values[dofs[f / nc]];
+    double* o = out + static_cast<std::size_t>(k) * stride + offset;
+    for (int d : local_dof) {
+      const double value = values[dofs[d]];
       for (int m = 0; m < nm; ++m) o[m] += value * c[m];
       c += nm;
     }

@@ -1,19 +1,14 @@
 // The threads of one assembly call: worker t runs the t-th of contiguous shares of the ordered solid
 // elements, each on its own thread, so that the sums come out in the same order for any thread count.
 #pragma once
-#include <exception>
 #include <memory>
-#include <thread>
 #include <utility>
 #include <vector>
 
+#include "on_threads.hpp"
+
 namespace dlmfsi {
 
-// Worker: run(const int* first, const int* last) over the elements [first, last). make(t) returns worker t
-// (a std::unique_ptr<Worker>), called on the thread that runs it: what a worker allocates then comes from
-// that thread's memory, not next to another thread's, so that the threads do not write to the same cache
-// lines (workers made one after another on one thread put their counters and scratch side by side). The
-// workers stay in workers for the caller. Rethrows a thread's error.
 // A worker's hold, while it runs, on lists that the caller keeps from call to call: swapped into this object
 // (no entry copied) and cleared, and swapped back when it ends (also on an error), so that the caller keeps
 // their memory, and the headers that every push_back writes lie in the worker's own memory, not beside
@@ -44,6 +39,12 @@ class HeldLists {
   std::vector<std::vector<T>*> mine_;
 };
 
+// Worker: run(const int* first, const int* last) over the elements [first, last). make(t) returns worker t
+// (a std::unique_ptr<Worker>), called on the thread that runs it: what a worker allocates then comes from
+// that thread's memory, not next to another thread's, so that the threads do not write to the same cache
+// lines (workers made one after another on one thread put their counters and scratch side by side). The
+// workers stay in workers for the caller. Rethrows a thread's error. Worker 0 runs on the
+// calling thread, the others on on_threads'.
 template <class Worker, class Make>
 void run_shares(std::vector<std::unique_ptr<Worker>>& workers, int threads, Make make,
                 const std::vector<int>& elements) {
@@ -51,25 +52,10 @@ void run_shares(std::vector<std::unique_ptr<Worker>>& workers, int threads, Make
   workers.resize(threads);
   const long long count = static_cast<long long>(elements.size());
   auto share = [&](int t) { return elements.data() + count * t / threads; };
-  if (threads == 1) {
-    workers[0] = make(0);
-    workers[0]->run(share(0), share(1));
-    return;
-  }
-  std::vector<std::thread> pool;
-  std::vector<std::exception_ptr> errors(threads);
-  for (int t = 0; t < threads; ++t)
-    pool.emplace_back([&, t] {
-      try {
-        workers[t] = make(t);
-        workers[t]->run(share(t), share(t + 1));
-      } catch (...) {
-        errors[t] = std::current_exception();
-      }
-    });
-  for (auto& th : pool) th.join();
-  for (auto& e : errors)
-    if (e) std::rethrow_exception(e);
+  on_threads(threads, [&](int t) {
+    workers[t] = make(t);
+    workers[t]->run(share(t), share(t + 1));
+  });
 }
 
 }  // namespace dlmfsi

@@ -92,31 +92,49 @@ const CsrMatrix& CsrBuilder::build_on_last_pattern(std::vector<Triplet>* misses,
     misses[threads].clear();
     in_place_sum_.sum_later(later, threads, misses[threads]);
   }
-  const size_t set = in_place_sum_.count_set();
-  kept_pattern_ = set == m.column.size();
+  kept_pattern_ = in_place_sum_.count_set(0, m.column.size()) == m.column.size();
   for (int t = 0; t < lists; ++t) kept_pattern_ = kept_pattern_ && misses[t].empty();
   if (kept_pattern_) return m;
-  if (ranges_.empty()) ranges_.push_back(std::make_unique<CompressedRows>());
-  CompressedRows& r = *ranges_[0];
-  r.first = 0;
-  r.last = m.rows;
-  r.compress<true>(m.cols, misses, lists);
-  // Row by row, the set entries of the last pattern and the misses' entries merged by column (no column is
-  // in both: a miss is an entry outside the last pattern).
+  // Ranges of rows, each on its own thread: its misses compressed, then its rows merged (below) from
+  // base[t] on, base[t + 1] - base[t] being the range's set entries and compressed misses.
+  const int n = threads_for(threads, m.rows, 4096);
+  const RowRanges split{m.rows, n};
+  while (static_cast<int>(ranges_.size()) < n) ranges_.push_back(std::make_unique<CompressedRows>());
+  std::vector<size_t> base(n + 1, 0);
+  on_threads(n, [&](int t) {
+    CompressedRows& r = *ranges_[t];
+    r.first = split.first(t);
+    r.last = split.first(t + 1);
+    if (n == 1)
+      r.compress<true>(m.cols, misses, lists);
+    else
+      r.compress<false>(m.cols, misses, lists);
+    base[t + 1] = in_place_sum_.count_set(m.start[r.first], m.start[r.last]) + r.column.size();
+  });
+  for (int t = 0; t < n; ++t) base[t + 1] += base[t];
   CsrMatrix& out = merged_;
-  const size_t size = set + r.column.size();
-  room(out.column, size);
-  room(out.value, size);
-  out.column.resize(size);
-  out.value.resize(size);
+  room(out.column, base[n]);
+  room(out.value, base[n]);
+  out.column.resize(base[n]);
+  out.value.resize(base[n]);
   out.start.resize(m.rows + 1);
   out.rows = m.rows;
   out.cols = m.cols;
-  size_t at = 0, miss = 0;
   out.start[0] = 0;
-  for (int i = 0; i < m.rows; ++i) {
+  on_threads(n, [&](int t) { merge_rows(*ranges_[t], base[t]); });
+  std::swap(m, out);
+  return m;
+}
+
+// Row by row, the set entries of the last pattern and the misses' entries (compressed in r) merged by
+// column into merged_ from entry at on (no column is in both: a miss is an entry outside the last pattern).
+void CsrBuilder::merge_rows(const CompressedRows& r, size_t at) {
+  const CsrMatrix& m = matrix_;
+  CsrMatrix& out = merged_;
+  size_t miss = 0;
+  for (int i = r.first; i < r.last; ++i) {
     size_t k = m.start[i];
-    const size_t kept_end = m.start[i + 1], miss_end = miss + r.length[i];
+    const size_t kept_end = m.start[i + 1], miss_end = miss + r.length[i - r.first];
     for (;;) {
       while (k < kept_end && !in_place_sum_.set(k)) ++k;
       if (k < kept_end && (miss == miss_end || m.column[k] < r.column[miss])) {
@@ -131,8 +149,6 @@ const CsrMatrix& CsrBuilder::build_on_last_pattern(std::vector<Triplet>* misses,
     }
     out.start[i + 1] = static_cast<int>(at);
   }
-  std::swap(m, out);
-  return m;
 }
 
 CsrMatrix compress(int rows, int cols, const std::vector<std::vector<Triplet>>& parts) {

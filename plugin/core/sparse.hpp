@@ -40,7 +40,7 @@ class CsrBuilder {
   // kept when there are no misses and every entry was set. With threads (each summing the rows only it adds
   // to, InPlaceSum::later_rows): their later rows' triplets in later[0 .. threads - 1] are summed here in
   // order, and the misses are in misses[0 .. threads - 1], misses[threads] taking the later rows' ones. An
-  // entry's contributions then all come from one list, in order.
+  // entry's contributions then all come from one list, in order. The threads then merge ranges of rows.
   const CsrMatrix& build_on_last_pattern(std::vector<Triplet>* misses, const std::vector<Triplet>* later = nullptr,
                                          int threads = 1);
   const CsrMatrix& matrix() const { return matrix_; }
@@ -53,6 +53,7 @@ class CsrBuilder {
   // Range t of n reads the count lists from_range(t) (AllInRange: only triplets of its rows).
   template <bool AllInRange, class PartsOf>
   const CsrMatrix& build_ranges(int rows, int cols, int n, std::size_t count, PartsOf from_range);
+  void merge_rows(const CompressedRows& r, std::size_t at);
 
   CsrMatrix matrix_;
   bool kept_pattern_ = false;

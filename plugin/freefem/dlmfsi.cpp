@@ -220,11 +220,12 @@ const dlmfsi::CsrMatrix& DlmfsiOp::assemble(Stack stack, const dlmfsi::CouplingO
   const int degree = dlmfsi::FieldMap::fit_degree(map_x_basis, px.second, map_y_basis, py.second);
   const dlmfsi::PolynomialBasis* fit_x = degree > 0 ? cache.map_fit(sx, px.second, degree) : nullptr;
   const dlmfsi::PolynomialBasis* fit_y = degree > 0 ? cache.map_fit(sy, py.second, degree) : nullptr;
-  // the kept spaces read their dofs from a table
+  // The kept spaces read their dofs from a table (which threads may share).
   const dlmfsi::Basis* kept_x = cache.map_space(sx);
   const dlmfsi::Basis* kept_y = cache.map_space(sy);
   const dlmfsi::FieldMap map(solid.mesh(), kept_x ? *kept_x : map_x_basis, &cx[0], px.second,
-                             kept_y ? *kept_y : map_y_basis, &cy[0], py.second, fit_x, fit_y);
+                             kept_y ? *kept_y : map_y_basis, &cy[0], py.second, fit_x, fit_y,
+                             kept_x && kept_y ? opt.threads : 1);
   dlmfsi::CouplingReport report;
   const dlmfsi::CsrMatrix& b = assembly().assemble(fluid, solid, map, opt, &report);
   if (verbosity > 1) cout << report.summary() << endl;

@@ -187,9 +187,14 @@ AnyType Dlmfsi3Op::operator()(Stack stack) const {
     const dlmfsi::PolynomialBasis3* fits[3] = {nullptr, nullptr, nullptr};
     if (degree > 0)
       for (int a = 0; a < 3; ++a) fits[a] = cache.map_fit(*sp[a], comps[a], degree);
-    for (int a = 0; a < 3; ++a)  // the kept spaces read their dofs from a table
-      if (const dlmfsi::Basis3* kept = cache.map_space(*sp[a])) spaces[a] = kept;
-    const dlmfsi::FieldMap3 xmap(solid.mesh(), spaces, values, comps, fits);
+    // The kept spaces read their dofs from a table (which threads may share).
+    int kept = 0;
+    for (int a = 0; a < 3; ++a)
+      if (const dlmfsi::Basis3* k = cache.map_space(*sp[a])) {
+        spaces[a] = k;
+        ++kept;
+      }
+    const dlmfsi::FieldMap3 xmap(solid.mesh(), spaces, values, comps, fits, kept == 3 ? opt.threads : 1);
     dlmfsi::CouplingReport3 report;
     const dlmfsi::CsrMatrix& b = assembly3().assemble(fluid, solid, xmap, opt, &report);
     if (verbosity > 1) cout << report.summary() << endl;

@@ -137,8 +137,8 @@ struct Recorder {
 }  // namespace
 
 // run_shares makes each worker on the thread that runs it (so that what a worker allocates is not next to
-// another thread's memory: no shared cache line between the threads), not on the caller's; the shares are
-// contiguous and cover the elements in order.
+// another thread's memory: no shared cache line between the threads), worker 0 on the caller's and each
+// other one on a thread of its own; the shares are contiguous and cover the elements in order.
 TEST(RunShares, EachWorkerIsMadeOnTheThreadThatRunsIt) {
   const std::vector<int> elements = {10, 11, 12, 13, 14, 15, 16};
   for (int threads : {1, 2, 3}) {
@@ -148,9 +148,10 @@ TEST(RunShares, EachWorkerIsMadeOnTheThreadThatRunsIt) {
     int next = 10, total = 0;
     for (int t = 0; t < threads; ++t) {
       EXPECT_EQ(workers[t]->made, workers[t]->ran) << threads << " threads, worker " << t;
-      if (threads > 1) {
-        EXPECT_NE(workers[t]->made, std::this_thread::get_id()) << threads << " threads, worker " << t;
+      if (t == 0) {
+        EXPECT_EQ(workers[t]->made, std::this_thread::get_id()) << threads << " threads";
       }
+      for (int u = 0; u < t; ++u) EXPECT_NE(workers[t]->made, workers[u]->made) << threads << " threads, workers " << u << ", " << t;
       if (workers[t]->count > 0) {
         EXPECT_EQ(workers[t]->first, next);
       }
