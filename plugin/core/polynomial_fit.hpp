@@ -147,7 +147,7 @@ inline std::vector<int> twin_functions(const std::vector<double>& coefficients, 
 // f) (Fit: PolynomialBasis or PolynomialBasis3 of nm monomials, fitted on space).
 template <int D, class Fit>
 void add_field_monomials(const BasisOf<D>& space, const double* values, const Fit& fit, int nm, int first, int last,
-                     double* out, std::size_t offset, std::size_t stride) {
+                         double* out, std::size_t offset, std::size_t stride) {
   std::vector<int> dofs(space.local_dofs()), local_dof;
   for (int f : fit.functions()) local_dof.push_back(f / space.components());
   for (int k = first; k < last; ++k) {

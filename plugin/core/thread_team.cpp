@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include <unistd.h>
+
 namespace dlmfsi {
 
 namespace {
@@ -31,9 +33,13 @@ bool wait_actively(Done done) {
 }  // namespace
 
 ThreadTeam& ThreadTeam::shared() {
-  static ThreadTeam team;
-  return team;
+  // Never destroyed: at exit its workers sleep and end with the process (no join in a static destructor,
+  // which a process forked from this one, without the workers, would wait in for ever).
+  static ThreadTeam* const team = new ThreadTeam;
+  return *team;
 }
+
+ThreadTeam::ThreadTeam() : process_(getpid()) {}
 
 ThreadTeam::~ThreadTeam() {
   {
@@ -45,6 +51,7 @@ ThreadTeam::~ThreadTeam() {
 }
 
 bool ThreadTeam::try_run(int n, const std::function<void(int)>& task) {
+  if (getpid() != process_) return false;  // a forked process: the workers stayed in its parent
   bool idle = false;
   if (!busy_.compare_exchange_strong(idle, true, std::memory_order_acquire)) return false;
   struct Release {
@@ -95,11 +102,13 @@ void ThreadTeam::work(int t, unsigned seen) {
       if (quit_) return;
     }
     seen = generation_.load(std::memory_order_acquire);
-    if (t < n_) try {
+    if (t < n_) {
+      try {
         (*task_)(t);
       } catch (...) {
         errors_[t] = std::current_exception();
       }
+    }
     if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
       std::lock_guard<std::mutex> lock(mutex_);
       finished_.notify_one();

@@ -22,30 +22,32 @@ class ThreadTeam {
   // The process's team (its workers started when first needed).
   static ThreadTeam& shared();
 
-  ThreadTeam() = default;
+  ThreadTeam();
   ~ThreadTeam();
   ThreadTeam(const ThreadTeam&) = delete;
   ThreadTeam& operator=(const ThreadTeam&) = delete;
 
   // Runs task(t) for t = 0 .. n - 1, t = 0 on the calling thread and the others on workers, and returns
   // when all have ended (rethrowing the first error by t); false, with nothing run, when the team is
-  // running a task already (another caller, or a task that itself asks for threads).
+  // running a task already (another caller, or a task that itself asks for threads), when a worker cannot
+  // be started, or in a process forked from the team's.
   bool try_run(int n, const std::function<void(int)>& task);
 
  private:
   // Worker t's loop (t >= 1): the tasks after the seen-th.
   void work(int t, unsigned seen);
 
-  std::atomic<bool> busy_{false};  // a try_run in progress
+  const long process_;                   // the process that made the team (a fork has no workers)
+  std::atomic<bool> busy_{false};        // a try_run in progress
   std::mutex mutex_;
   std::condition_variable wake_, finished_;
-  std::vector<std::thread> workers_;  // worker t is workers_[t - 1]
+  std::vector<std::thread> workers_;     // worker t is workers_[t - 1]
   std::atomic<unsigned> generation_{0};  // the number of tasks given
   std::atomic<int> pending_{0};          // workers that have not ended the current task
   const std::function<void(int)>* task_ = nullptr;
-  int n_ = 0;
+  int n_ = 0;                            // the current task's share count
   std::vector<std::exception_ptr> errors_;
-  bool quit_ = false;
+  bool quit_ = false;                    // the destructor's word to the workers
 };
 
 }  // namespace dlmfsi

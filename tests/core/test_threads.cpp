@@ -1,6 +1,6 @@
 // The process's thread team (thread_team.hpp) behind on_threads: every share run once on its own thread,
-// errors handed back, and callers it cannot serve (from another thread, or from within a task) run on
-// threads of their own.
+// errors handed back, and callers it cannot serve (from another thread, from within a task, or in a forked
+// process) run on threads of their own.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -8,6 +8,9 @@
 #include <stdexcept>
 #include <thread>
 #include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "on_threads.hpp"
 #include "thread_team.hpp"
@@ -76,4 +79,25 @@ TEST(ThreadTeam, ABusyTeamRunsNothing) {
   }));
   EXPECT_FALSE(nested);
   EXPECT_EQ(runs.load(), 2);
+}
+
+// A process forked after the team has its workers has none of them: its calls run on threads of their own
+// (were they given to the team, they would wait for ever for workers that are not there).
+TEST(ThreadTeam, AForkedProcessRunsOnThreadsOfItsOwn) {
+#if defined(__SANITIZE_THREAD__)
+  GTEST_SKIP() << "ThreadSanitizer starts no thread in a process forked from a multi-threaded one";
+#endif
+  on_threads(2, [](int) {});  // the team has a worker
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    alarm(20);  // a child that waits for ever ends by the signal, and the test fails
+    std::atomic<int> sum{0};
+    on_threads(3, [&](int t) { sum += t + 1; });
+    _exit(sum.load() == 6 ? 0 : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
 }
