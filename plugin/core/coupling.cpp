@@ -322,16 +322,25 @@ const CsrMatrix& CouplingAssembly::in_dof_order(const CsrMatrix& by_rows, const 
   room(out.value, by_rows.value.size());
   out.column.resize(by_rows.column.size());
   out.value.resize(by_rows.value.size());
-  out.start[0] = 0;
-  for (int d = 0; d < by_rows.rows; ++d) {
-    const int r = row_of_dof[d];
-    out.start[d + 1] = out.start[d] + by_rows.start[r + 1] - by_rows.start[r];
+  // Shares of the dofs, one per thread: share t's entries start after those of the shares before it.
+  const int n = threads_for(threads, by_rows.rows, 4096);
+  const RowRanges split{by_rows.rows, n};
+  auto length = [&](int d) { return by_rows.start[row_of_dof[d] + 1] - by_rows.start[row_of_dof[d]]; };
+  std::vector<int> share_start(n, 0);
+  if (n > 1) {
+    on_threads(n - 1, [&](int t) {
+      for (int d = split.first(t); d < split.first(t + 1); ++d) share_start[t + 1] += length(d);
+    });
+    for (int t = 1; t < n; ++t) share_start[t] += share_start[t - 1];
   }
-  on_shares(threads_for(threads, by_rows.rows, 4096), by_rows.rows, [&](int first_dof, int last_dof) {
-    for (int d = first_dof; d < last_dof; ++d) {
-      const int r = row_of_dof[d], first = by_rows.start[r], last = by_rows.start[r + 1], at = out.start[d];
+  out.start[0] = 0;
+  on_threads(n, [&](int t) {
+    int at = share_start[t];
+    for (int d = split.first(t); d < split.first(t + 1); ++d) {
+      const int r = row_of_dof[d], first = by_rows.start[r], last = by_rows.start[r + 1];
       std::copy(by_rows.column.begin() + first, by_rows.column.begin() + last, out.column.begin() + at);
       std::copy(by_rows.value.begin() + first, by_rows.value.begin() + last, out.value.begin() + at);
+      out.start[d + 1] = at += last - first;
     }
   });
   return out;

@@ -92,7 +92,8 @@ const CsrMatrix& CsrBuilder::build_on_last_pattern(std::vector<Triplet>* misses,
     misses[threads].clear();
     in_place_sum_.sum_later(later, threads, misses[threads]);
   }
-  kept_pattern_ = in_place_sum_.count_set(0, m.column.size()) == m.column.size();
+  const size_t set = in_place_sum_.count_set(0, m.column.size());
+  kept_pattern_ = set == m.column.size();
   for (int t = 0; t < lists; ++t) kept_pattern_ = kept_pattern_ && misses[t].empty();
   if (kept_pattern_) return m;
   // Ranges of rows, each on its own thread: its misses compressed, then its rows merged (below) from
@@ -109,7 +110,7 @@ const CsrMatrix& CsrBuilder::build_on_last_pattern(std::vector<Triplet>* misses,
       r.compress<true>(m.cols, misses, lists);
     else
       r.compress<false>(m.cols, misses, lists);
-    base[t + 1] = in_place_sum_.count_set(m.start[r.first], m.start[r.last]) + r.column.size();
+    base[t + 1] = (n == 1 ? set : in_place_sum_.count_set(m.start[r.first], m.start[r.last])) + r.column.size();
   });
   for (int t = 0; t < n; ++t) base[t + 1] += base[t];
   CsrMatrix& out = merged_;
