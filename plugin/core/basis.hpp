@@ -35,6 +35,9 @@ class BasisOf {
   // Local dofs [first, last) that carry component c (the same on every element).
   virtual void component_dofs(int c, int& first, int& last) const = 0;
   virtual void dofs(int k, int* global) const = 0;
+  // Every element's dofs in one table, local_dofs() per element in element order (what dofs() gives), when
+  // the basis keeps them so; otherwise null (the default).
+  virtual const int* dof_table() const { return nullptr; }
   // Values and physical first derivatives of all local basis functions of element k at reference point xi
   // (coordinates (l1, l2[, l3]): x = p0 + l1 (p1 - p0) + l2 (p2 - p0) [+ l3 (p3 - p0)]):
   //   out[(df * components() + c) * kSlots + d], d = 0 value, 1 d/dx, 2 d/dy[, 3 d/dz].

@@ -55,11 +55,9 @@ FieldMap::FieldMap(const Mesh& solid, const Basis& space_x, const double* coef_x
   const int nm = monomial_count(degree_), size = solid.size();
   monomial_coef_.reset(new double[static_cast<size_t>(size) * 2 * nm]);
   on_shares(threads_for(threads, size, 8192), size, [&](int first, int last) {
-    const size_t per_element = 2 * static_cast<size_t>(nm);
-    std::fill(monomial_coef_.get() + first * per_element, monomial_coef_.get() + last * per_element, 0.0);
     for (int a = 0; a < 2; ++a)
-      add_field_monomials(*part_[a].space, part_[a].coef, *fit[a], nm, first, last, monomial_coef_.get(),
-                          static_cast<size_t>(a) * nm, per_element);
+      field_monomials(*part_[a].space, part_[a].coef, *fit[a], nm, first, last, monomial_coef_.get(),
+                      static_cast<size_t>(a) * nm, 2 * static_cast<size_t>(nm));
   });
 }
 

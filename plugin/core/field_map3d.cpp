@@ -88,11 +88,9 @@ FieldMap3::FieldMap3(const Mesh3& solid, const Basis3* const space[3], const dou
   }
   monomial_coef_.reset(new double[static_cast<size_t>(size) * 3 * nm]);
   on_shares(threads_for(threads, size, 8192), size, [&](int first, int last) {
-    const size_t per_element = 3 * static_cast<size_t>(nm);
-    std::fill(monomial_coef_.get() + first * per_element, monomial_coef_.get() + last * per_element, 0.0);
     for (int a = 0; a < 3; ++a)
-      add_field_monomials(*part_[a].space, part_[a].coef, *used[a], nm, first, last, monomial_coef_.get(),
-                          static_cast<size_t>(a) * nm, per_element);
+      field_monomials(*part_[a].space, part_[a].coef, *used[a], nm, first, last, monomial_coef_.get(),
+                      static_cast<size_t>(a) * nm, 3 * static_cast<size_t>(nm));
   });
   for (int a = 0; a < 3; ++a)
     for (int i = 0; i < 4; ++i)

@@ -142,22 +142,36 @@ inline std::vector<int> twin_functions(const std::vector<double>& coefficients, 
   return twin;
 }
 
-// A field's polynomials on the elements [first, last): out[k * stride + offset + m] += the coefficient of
+// A field's polynomials on the elements [first, last): out[k * stride + offset + m] = the coefficient of
 // monomial m, on element k, of the sum over the fitted functions f of values[global dof of f] * (function
-// f) (Fit: PolynomialBasis or PolynomialBasis3 of nm monomials, fitted on space).
+// f) (Fit: PolynomialBasis or PolynomialBasis3 of nm monomials, fitted on space), summed from zero in the
+// functions' order.
 template <int D, class Fit>
-void add_field_monomials(const BasisOf<D>& space, const double* values, const Fit& fit, int nm, int first, int last,
-                         double* out, std::size_t offset, std::size_t stride) {
-  std::vector<int> dofs(space.local_dofs()), local_dof;
+void field_monomials(const BasisOf<D>& space, const double* values, const Fit& fit, int nm, int first, int last,
+                     double* out, std::size_t offset, std::size_t stride) {
+  const int nd = space.local_dofs();
+  const int* const table = space.dof_table();
+  std::vector<int> room(nd), local_dof;
   for (int f : fit.functions()) local_dof.push_back(f / space.components());
   for (int k = first; k < last; ++k) {
-    space.dofs(k, dofs.data());
-    const double* c = fit.coefficients(k);
     double* o = out + static_cast<std::size_t>(k) * stride + offset;
-    for (int d : local_dof) {
-      const double value = values[dofs[d]];
-      for (int m = 0; m < nm; ++m) o[m] += value * c[m];
+    if (local_dof.empty()) {
+      std::fill(o, o + nm, 0.0);
+      continue;
+    }
+    const int* dofs = room.data();
+    if (table)
+      dofs = table + static_cast<std::size_t>(k) * nd;
+    else
+      space.dofs(k, room.data());
+    const double* c = fit.coefficients(k);
+    // the first term added to zero (+ 0.0: a -0 term gives +0, as a sum from zero does)
+    const double value = values[dofs[local_dof[0]]];
+    for (int m = 0; m < nm; ++m) o[m] = value * c[m] + 0.0;
+    for (std::size_t i = 1; i < local_dof.size(); ++i) {
       c += nm;
+      const double v = values[dofs[local_dof[i]]];
+      for (int m = 0; m < nm; ++m) o[m] += v * c[m];
     }
   }
 }

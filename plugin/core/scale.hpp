@@ -34,6 +34,7 @@ class ScaledBasis : public Basis {
   int local_dofs() const override { return base_.local_dofs(); }
   void component_dofs(int c, int& first, int& last) const override { base_.component_dofs(c, first, last); }
   void dofs(int k, int* global) const override { base_.dofs(k, global); }
+  const int* dof_table() const override { return base_.dof_table(); }
   void evaluate(int k, Point xi, double* out) const override {
     base_.evaluate(k, xi, out);
     if (factor_ == 1) return;

@@ -34,6 +34,7 @@ class SpaceBasisOf : public dlmfsi::BasisOf<D> {
     const auto K = vh_[k];
     for (int df = 0; df < nd_; ++df) global[df] = K(df);
   }
+  const int* dof_table() const override { return table_.empty() ? nullptr : table_.data(); }
   // Keeps every element's dofs, so that dofs() reads them instead of asking FreeFEM for the element (a
   // kept space whose map asks for all of them on every call of a time loop).
   void tabulate_dofs() {
