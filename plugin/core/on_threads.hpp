@@ -11,7 +11,8 @@ namespace dlmfsi {
 
 // Runs f(t) for t = 0 .. n - 1, each on its own thread (t = 0 on the calling one); rethrows a thread's
 // error once all have ended. The threads are the process's team (ThreadTeam), or started for this call
-// when the team is busy (a call from another thread, or from within f).
+// when the team cannot serve it (ThreadTeam::try_run: busy with another call, or with the task that makes
+// this one; in a forked process).
 template <class F>
 void on_threads(int n, F f) {
   if (n == 1) {
@@ -50,9 +51,8 @@ inline int threads_for(int threads, long long count, long long per_thread) {
 // Runs f(first, last) over n contiguous shares [first, last) of 0 .. count - 1, on n threads.
 template <class F>
 void on_shares(int n, int count, F f) {
-  on_threads(n, [&](int t) {
-    f(static_cast<int>(static_cast<long long>(count) * t / n), static_cast<int>(static_cast<long long>(count) * (t + 1) / n));
-  });
+  auto first = [&](int t) { return static_cast<int>(static_cast<long long>(count) * t / n); };
+  on_threads(n, [&](int t) { f(first(t), first(t + 1)); });
 }
 
 }  // namespace dlmfsi

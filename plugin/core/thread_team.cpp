@@ -11,7 +11,8 @@ namespace {
 // How long a thread waits actively (for the next task, or for the workers to end) before it sleeps.
 constexpr std::chrono::microseconds kActiveWait{200};
 
-void pause() {
+// A hint to the CPU that this thread is waiting actively (x86 PAUSE).
+void cpu_relax() {
 #if defined(__x86_64__) || defined(__i386__)
   __builtin_ia32_pause();
 #endif
@@ -24,7 +25,7 @@ bool wait_actively(Done done) {
   for (;;) {
     for (int i = 0; i < 64; ++i) {
       if (done()) return true;
-      pause();
+      cpu_relax();
     }
     if (std::chrono::steady_clock::now() > until) return done();
   }

@@ -151,7 +151,8 @@ TEST(RunShares, EachWorkerIsMadeOnTheThreadThatRunsIt) {
       if (t == 0) {
         EXPECT_EQ(workers[t]->made, std::this_thread::get_id()) << threads << " threads";
       }
-      for (int u = 0; u < t; ++u) EXPECT_NE(workers[t]->made, workers[u]->made) << threads << " threads, workers " << u << ", " << t;
+      for (int u = 0; u < t; ++u)
+        EXPECT_NE(workers[t]->made, workers[u]->made) << threads << " threads, workers " << u << ", " << t;
       if (workers[t]->count > 0) {
         EXPECT_EQ(workers[t]->first, next);
       }
