@@ -1,6 +1,7 @@
 // The assembly kept across calls (CouplingAssembly): a time loop's calls give what one-off calls give, bit
 // for bit, whatever changes between them (the map, the thread count, the fluid side), and the values are
-// written in place exactly when the pattern is the last call's. And the threads of one call (run_shares).
+// written in place exactly when the pattern is the last call's. And the threads of one call (run_shares), and
+// the map's monomials computed on threads.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -226,4 +227,50 @@ TEST(CouplingAssembly, RowsFollowTheMultipliersDofNumbering) {
       check(loop.assemble(fluid, side, map, opt), false, "loop");
     }
   }
+}
+
+namespace {
+
+// P1 whose dofs also come as one table (Basis::dof_table), as FreeFEM's kept spaces give them.
+class TabulatedP1 : public test::P1 {
+ public:
+  explicit TabulatedP1(const Mesh& m) : P1(m) {
+    for (const auto& t : m.triangles) table_.insert(table_.end(), t.begin(), t.end());
+  }
+  const int* dof_table() const override { return table_.data(); }
+
+ private:
+  std::vector<int> table_;
+};
+
+}  // namespace
+
+// The map's monomials on every solid triangle, on one to three threads and with the dofs read from a table:
+// X's on triangle k are (X(p0), X(p1) - X(p0), X(p2) - X(p0)) at its corners p0, p1, p2 (the P1 interpolant
+// in the reference coordinates), the same bits on any thread count and either way of reading the dofs.
+TEST(FieldMap, MonomialsOnThreadsAndFromADofTableAreTheCornerValues) {
+  const Mesh solid = test::grid_mesh(91, 91, 0.3, 0.3, 0.4, 0.35);  // 16,562 triangles: two shares of 8,192
+  const test::P1 vs(solid);
+  const TabulatedP1 tabulated(solid);
+  const PolynomialBasis fit(vs, solid, 1, {0});
+  const Rotated r(solid, 0.3, 0.01);
+  const FieldMap one(solid, vs, r.x.data(), 0, vs, r.y.data(), 0, &fit, &fit, 1);
+  ASSERT_EQ(one.degree(), 1);
+  for (int threads : {1, 2, 3})
+    for (const Basis* space : {static_cast<const Basis*>(&vs), static_cast<const Basis*>(&tabulated)}) {
+      const FieldMap map(solid, *space, r.x.data(), 0, *space, r.y.data(), 0, &fit, &fit, threads);
+      for (int k = 0; k < solid.size(); ++k) {
+        double cx[3], cy[3], wx[3], wy[3];
+        ASSERT_TRUE(map.coefficients(k, cx, cy));
+        one.coefficients(k, wx, wy);
+        ASSERT_TRUE(std::equal(cx, cx + 3, wx) && std::equal(cy, cy + 3, wy)) << threads << " threads, triangle " << k;
+        const auto& t = solid.triangles[k];
+        for (int a = 0; a < 2; ++a) {
+          const std::vector<double>& v = a == 0 ? r.x : r.y;
+          const double* c = a == 0 ? cx : cy;
+          const double want[3] = {v[t[0]], v[t[1]] - v[t[0]], v[t[2]] - v[t[0]]};
+          for (int m = 0; m < 3; ++m) ASSERT_NEAR(c[m], want[m], 1e-15) << "triangle " << k << " monomial " << m;
+        }
+      }
+    }
 }
