@@ -42,12 +42,16 @@ class FluidSearchOf {
   void for_each_piece(const PointT t[kCorners], int& hint, Visit&& visit);
 
  private:
+  // Does p lie in the closed element k?
+  bool in_element(int k, PointT p) const {
+    for (int i = 0; i < kCorners; ++i)
+      if (Elements::side(fluid_, k, i, p) < 0) return false;
+    return true;
+  }
   // Do the corners of t in mask (bit i: corner i) lie in the closed element k?
   bool holds_corners(int k, const PointT t[kCorners], unsigned mask) const {
     for (int c = 0; c < kCorners; ++c)
-      if (mask & (1u << c))
-        for (int i = 0; i < kCorners; ++i)
-          if (Elements::side(fluid_, k, i, t[c]) < 0) return false;
+      if ((mask & (1u << c)) && !in_element(k, t[c])) return false;
     return true;
   }
   bool mark(int k) {
@@ -86,10 +90,7 @@ int FluidSearchOf<Elements>::locate(PointT p, int hint) const {
   }
   int found = -1;
   grid_.for_each_in_box(p, p, [&](int k) {
-    if (found >= 0) return;
-    for (int i = 0; i < kCorners; ++i)
-      if (Elements::side(m, k, i, p) < 0) return;
-    found = k;
+    if (found < 0 && in_element(k, p)) found = k;
   });
   return found;
 }

@@ -34,9 +34,10 @@ SolidSide::SolidSide(Mesh mesh, const Basis& multiplier, const std::vector<int>&
       degree_((check_components(multiplier, components, "solid", "multiplier space"),
                polynomial_degree(multiplier, components))),
       basis_(multiplier, mesh_, degree_, components), order_(morton_order(mesh_)),
-      dofs_(static_cast<size_t>(mesh_.size()) * multiplier.local_dofs()) {
+      rows_(static_cast<size_t>(mesh_.size()) * multiplier.local_dofs()) {
+  // rows_ holds each triangle's dofs first, then their rows.
   const size_t local = static_cast<size_t>(multiplier.local_dofs());
-  for (int k = 0; k < mesh_.size(); ++k) space_.dofs(k, &dofs_[k * local]);
+  for (int k = 0; k < mesh_.size(); ++k) space_.dofs(k, &rows_[k * local]);
   // The rows in order of first use along the triangles' order; dofs no triangle uses last.
   const int count = multiplier.dof_count();
   row_of_dof_.assign(count, -1);
@@ -47,10 +48,9 @@ SolidSide::SolidSide(Mesh mesh, const Basis& multiplier, const std::vector<int>&
     if (row_of_dof_[d] < 0) row_of_dof_[d] = next++;
   };
   for (int k : order_)
-    for (size_t i = 0; i < local; ++i) number(dofs_[k * local + i]);
+    for (size_t i = 0; i < local; ++i) number(rows_[k * local + i]);
   for (int d = 0; d < count; ++d) number(d);
-  rows_.resize(dofs_.size());
-  for (size_t i = 0; i < dofs_.size(); ++i) rows_[i] = row_of_dof_[dofs_[i]];
+  for (int& r : rows_) r = row_of_dof_[r];
   for (int d = 0; d < count && rows_are_dofs_; ++d) rows_are_dofs_ = row_of_dof_[d] == d;
 }
 

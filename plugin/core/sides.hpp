@@ -65,11 +65,10 @@ class SolidSide {
   // triangles lie close together, so the search walks little from one to the next and the fluid data it
   // touches stays in cache, whatever order the mesh generator left them in.
   const std::vector<int>& order() const { return order_; }
-  // The global multiplier dofs of triangle k (space().local_dofs() of them).
-  const int* dofs(int k) const { return &dofs_[static_cast<size_t>(k) * space_.local_dofs()]; }
-  // The same as rows of the assembly's matrix: the dofs numbered in order of first use along order(), so that
-  // the rows the triangles add to in turn lie close together in memory, whatever the space's numbering (dof d
-  // is row row_of_dof()[d]; rows_are_dofs() when that is the identity).
+  // The rows of the assembly's matrix that triangle k adds to (space().local_dofs() of them): the multiplier's
+  // global dofs numbered in order of first use along order(), so that the rows the triangles add to in turn
+  // lie close together in memory, whatever the space's numbering (dof d is row row_of_dof()[d];
+  // rows_are_dofs() when that is the identity).
   const int* rows(int k) const { return &rows_[static_cast<size_t>(k) * space_.local_dofs()]; }
   const std::vector<int>& row_of_dof() const { return row_of_dof_; }
   bool rows_are_dofs() const { return rows_are_dofs_; }
@@ -83,7 +82,6 @@ class SolidSide {
   int degree_;
   PolynomialBasis basis_;
   std::vector<int> order_;
-  std::vector<int> dofs_;
   std::vector<int> rows_, row_of_dof_;
   bool rows_are_dofs_ = true;
 };
