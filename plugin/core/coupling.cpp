@@ -15,6 +15,7 @@
 #include "local_block.hpp"
 #include "on_threads.hpp"
 #include "run_shares.hpp"
+#include "shares.hpp"
 #include "validation.hpp"
 
 namespace dlmfsi {
@@ -155,7 +156,7 @@ void mark_later_rows(const SolidSide& solid, const std::vector<int>& elements, i
   owner.assign(rows, -1);
   const long long count = static_cast<long long>(elements.size());
   for (int t = 0; t < threads; ++t)
-    for (long long e = count * t / threads; e < count * (t + 1) / threads; ++e) {
+    for (long long e = share_first(count, t, threads); e < share_first(count, t + 1, threads); ++e) {
       const int* d = solid.rows(elements[e]);
       for (int i = 0; i < dofs; ++i) {
         int& o = owner[d[i]];

@@ -2,6 +2,8 @@
 #pragma once
 #include <vector>
 
+#include "shares.hpp"
+
 namespace dlmfsi {
 
 struct Triplet {
@@ -15,9 +17,9 @@ struct Triplet {
 // rows first(t) .. first(t + 1) - 1.
 struct RowRanges {
   int rows = 0, n = 1;
-  int first(int t) const { return static_cast<int>(static_cast<long long>(rows) * t / n); }
-  // The range holding row: the largest t with first(t) <= row, i.e. rows t < (row + 1) n.
-  int of(int row) const { return static_cast<int>((static_cast<long long>(row + 1) * n - 1) / rows); }
+  int first(int t) const { return static_cast<int>(share_first(rows, t, n)); }
+  // The range holding row.
+  int of(int row) const { return share_of(rows, row, n); }
 };
 
 // Row i holds the entries start[i] .. start[i + 1] - 1: columns column[e] (increasing) and values value[e].

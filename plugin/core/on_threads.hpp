@@ -5,6 +5,7 @@
 #include <thread>
 #include <vector>
 
+#include "shares.hpp"
 #include "thread_team.hpp"
 
 namespace dlmfsi {
@@ -48,10 +49,10 @@ inline int threads_for(int threads, long long count, long long per_thread) {
   return static_cast<int>(std::max(1LL, std::min<long long>(threads, count / per_thread)));
 }
 
-// Runs f(first, last) over n contiguous shares [first, last) of 0 .. count - 1, on n threads.
+// Runs f(first, last) over the n contiguous shares [first, last) of 0 .. count - 1 (shares.hpp), on n threads.
 template <class F>
 void on_shares(int n, int count, F f) {
-  auto first = [&](int t) { return static_cast<int>(static_cast<long long>(count) * t / n); };
+  auto first = [&](int t) { return static_cast<int>(share_first(count, t, n)); };
   on_threads(n, [&](int t) { f(first(t), first(t + 1)); });
 }
 

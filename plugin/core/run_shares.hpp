@@ -1,11 +1,13 @@
-// The threads of one assembly call: worker t runs the t-th of contiguous shares of the ordered solid
-// elements, each on its own thread, so that the sums come out in the same order for any thread count.
+// The threads of one assembly call: worker t runs the t-th of the contiguous shares (shares.hpp) of the
+// ordered solid elements, each on its own thread, so that the sums come out in the same order for any
+// thread count.
 #pragma once
 #include <memory>
 #include <utility>
 #include <vector>
 
 #include "on_threads.hpp"
+#include "shares.hpp"
 
 namespace dlmfsi {
 
@@ -51,7 +53,7 @@ void run_shares(std::vector<std::unique_ptr<Worker>>& workers, int threads, Make
   workers.clear();
   workers.resize(threads);
   const long long count = static_cast<long long>(elements.size());
-  auto share = [&](int t) { return elements.data() + count * t / threads; };
+  auto share = [&](int t) { return elements.data() + share_first(count, t, threads); };
   on_threads(threads, [&](int t) {
     workers[t] = make(t);
     workers[t]->run(share(t), share(t + 1));
