@@ -42,14 +42,9 @@ void MappedTriangle::prepare(const Mesh& solid_mesh, const SolidMap& map, int kk
     }
   }
   if (!affine) return;
-  // dX/ds = [f1 f2] [e1 e2]^-1, e1, e2 the solid edges
-  const Point e1 = solid[1] - solid[0], e2 = solid[2] - solid[0];
-  const double ds = cross(e1, e2);
+  // dX/ds = [f1 f2] [e1 e2]^-1, e1, e2 the solid edges: f1 = dX/dxi1, f2 = dX/dxi2
   affine_value.x = image[0];
-  affine_value.jac[0][0] = (f1.x * e2.y - f2.x * e1.y) / ds;
-  affine_value.jac[0][1] = (f2.x * e1.x - f1.x * e2.x) / ds;
-  affine_value.jac[1][0] = (f1.y * e2.y - f2.y * e1.y) / ds;
-  affine_value.jac[1][1] = (f2.y * e1.x - f1.y * e2.x) / ds;
+  set_jacobian(f1, f2, affine_value);
   affine_det = det2(affine_value.jac);
   if (!(affine_det > 0)) throw Error("the map flattens " + name());
 }
