@@ -81,17 +81,7 @@ void MomentIntegrator::add(const MappedTriangle& mt, int kf, const Moments& mo, 
   fluid.evaluate_affine(kf, eta, fv, fgx, fgy);
   multiplier.evaluate_affine(mt.k, xi, sv, sgx, sgy);
   const double(&j)[2][2] = mt.affine_value.jac;  // dX_a/ds_b
-  const double area = mo.area, det = mt.affine_det, stiff = integrand_.c1 * area / det;
-  if (mt.k != triangle_) {
-    triangle_ = mt.k;
-    mass_ = integrand_.c2 / det;
-    for (int f = 0; f < sw; ++f) {
-      syx_[f] = (j[1][1] * sgx[f] - j[1][0] * sgy[f]) / det;
-      syy_[f] = (j[0][0] * sgy[f] - j[0][1] * sgx[f]) / det;
-    }
-  }
-  const double mass = mass_;
-  const double *syx = syx_, *syy = syy_;
+  const double area = mo.area, det = mt.affine_det, mass = integrand_.c2 / det, stiff = integrand_.c1 * area / det;
   // per fluid function: c2/det (A phi(c), M grad phi), and the chain-rule gradient times c1 A / det
   double fa[kMaxFunctions], fmx[kMaxFunctions], fmy[kMaxFunctions], fcx[kMaxFunctions], fcy[kMaxFunctions];
   for (int f = 0; f < fw; ++f) {
@@ -104,6 +94,12 @@ void MomentIntegrator::add(const MappedTriangle& mt, int kf, const Moments& mo, 
       fcx[f] = stiff * (fgx[f] * j[0][0] + fgy[f] * j[1][0]);
       fcy[f] = stiff * (fgx[f] * j[0][1] + fgy[f] * j[1][1]);
     }
+  // per multiplier function: its gradient in y, (dX/ds)^-T grad_s psi
+  double syx[kMaxFunctions], syy[kMaxFunctions];
+  for (int f = 0; f < sw; ++f) {
+    syx[f] = (j[1][1] * sgx[f] - j[1][0] * sgy[f]) / det;
+    syy[f] = (j[0][0] * sgy[f] - j[0][1] * sgx[f]) / det;
+  }
   auto entry = [&](int f, int g) {
     double sum = fa[f] * sv[g] + fmx[f] * syx[g] + fmy[f] * syy[g];
     if (gradients_) sum += fcx[f] * sgx[g] + fcy[f] * sgy[g];

@@ -34,13 +34,6 @@ class MomentIntegrator : public PieceIntegrator {
   int fluid_functions_, multiplier_functions_;
   // One pair that reads every fitted function in order (a scalar space on each side).
   bool one_pair_;
-  // What the pieces of one solid triangle share: c2 / det and the multiplier functions' gradients in y,
-  // (dX/ds)^-T grad_s psi (constant on the triangle: degree <= 1, affine map), for triangle triangle_ (-1:
-  // none yet). The integrator lives for one assembly call, in which a triangle's pieces come one after the
-  // other and the map does not change.
-  int triangle_ = -1;
-  double mass_ = 0;
-  double syx_[kMaxFunctions], syy_[kMaxFunctions];
   void (MomentIntegrator::*add_)(const MappedTriangle&, int, const Moments&, LocalBlock&);
 };
 
