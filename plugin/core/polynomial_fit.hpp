@@ -151,7 +151,7 @@ void field_monomials(const BasisOf<D>& space, const double* values, const Fit& f
                      double* out, std::size_t offset, std::size_t stride) {
   const int nd = space.local_dofs();
   const int* const table = space.dof_table();
-  std::vector<int> room(nd), local_dof;
+  std::vector<int> asked(nd), local_dof;  // asked: the dofs from dofs() when there is no table
   for (int f : fit.functions()) local_dof.push_back(f / space.components());
   for (int k = first; k < last; ++k) {
     double* o = out + static_cast<std::size_t>(k) * stride + offset;
@@ -159,11 +159,11 @@ void field_monomials(const BasisOf<D>& space, const double* values, const Fit& f
       std::fill(o, o + nm, 0.0);
       continue;
     }
-    const int* dofs = room.data();
+    const int* dofs = asked.data();
     if (table)
       dofs = table + static_cast<std::size_t>(k) * nd;
     else
-      space.dofs(k, room.data());
+      space.dofs(k, asked.data());
     const double* c = fit.coefficients(k);
     // the first term added to zero (+ 0.0: a -0 term gives +0, as a sum from zero does)
     const double value = values[dofs[local_dof[0]]];
