@@ -75,10 +75,10 @@ sanitize: deps
 FUZZ_TIME ?= 60
 CLANGXX ?= clang++
 FUZZ_FLAGS := -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all -Iplugin/core -Itests/core
-FUZZ_SOURCES := tests/fuzz/fuzz_clip.cpp plugin/core/clip.cpp plugin/core/predicates.cpp plugin/core/exact_sign.cpp \
-  plugin/core/mesh.cpp plugin/core/fluid_search.cpp
-FUZZ3D_SOURCES := tests/fuzz/fuzz_clip3d.cpp plugin/core/clip3d.cpp plugin/core/predicates3d.cpp \
-  plugin/core/predicates.cpp plugin/core/exact_sign.cpp plugin/core/mesh3d.cpp plugin/core/fluid_search3d.cpp \
+FUZZ_SOURCES := tests/fuzz/fuzz_clip.cpp plugin/core/geometry/clip.cpp plugin/core/geometry/predicates.cpp plugin/core/geometry/exact_sign.cpp \
+  plugin/core/mesh/mesh.cpp plugin/core/mesh/fluid_search.cpp
+FUZZ3D_SOURCES := tests/fuzz/fuzz_clip3d.cpp plugin/core/geometry/clip3d.cpp plugin/core/geometry/predicates3d.cpp \
+  plugin/core/geometry/predicates.cpp plugin/core/geometry/exact_sign.cpp plugin/core/mesh/mesh3d.cpp plugin/core/mesh/fluid_search3d.cpp \
   tests/core/reference3d.cpp
 fuzz:
 	@scripts/install-deps fuzz

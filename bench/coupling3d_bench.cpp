@@ -13,7 +13,7 @@
 
 #include "../tests/core/support3d.hpp"
 #include "median.hpp"
-#include "coupling3d.hpp"
+#include "coupling/coupling3d.hpp"
 
 using namespace dlmfsi;
 using namespace dlmfsi::test3d;

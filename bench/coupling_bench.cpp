@@ -23,8 +23,8 @@
 #include "../tests/core/support.hpp"
 #include "median.hpp"
 #include "msh.hpp"
-#include "coupling.hpp"
-#include "field_map.hpp"
+#include "coupling/coupling.hpp"
+#include "map/field_map.hpp"
 
 using namespace dlmfsi;
 

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "mesh.hpp"
+#include "mesh/mesh.hpp"
 
 inline dlmfsi::Mesh read_msh(const std::string& path) {
   std::FILE* in = std::fopen(path.c_str(), "r");

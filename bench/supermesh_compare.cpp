@@ -28,10 +28,10 @@
 
 #include "../tests/core/support.hpp"
 #include "../tests/core/support3d.hpp"
-#include "coupling.hpp"
-#include "coupling3d.hpp"
-#include "field_map.hpp"
-#include "sparse.hpp"
+#include "coupling/coupling.hpp"
+#include "coupling/coupling3d.hpp"
+#include "map/field_map.hpp"
+#include "sparse/sparse.hpp"
 
 extern "C" {
 void libsupermesh_tree_intersection_finder_set_input(long* nnodes_a, int* dim_a, long* nelements_a, int* loc_a,

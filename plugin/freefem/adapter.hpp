@@ -6,8 +6,8 @@
 #include <exception>
 #include <string>
 
-#include "mesh.hpp"
-#include "mesh3d.hpp"
+#include "mesh/mesh.hpp"
+#include "mesh/mesh3d.hpp"
 
 namespace dlmfsi_ff {
 

@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "adapter.hpp"
-#include "characteristics.hpp"
+#include "transfer/characteristics.hpp"
 #include "errors.hpp"
 
 void dlmfsi_register_convect();

@@ -7,7 +7,7 @@
 #include <typeinfo>
 #include <vector>
 
-#include "options.hpp"  // the core's CouplingOptions
+#include "sides/options.hpp"  // the core's CouplingOptions
 #include "errors.hpp"
 
 namespace dlmfsi_ff {

@@ -16,14 +16,14 @@
 #include <vector>
 
 #include "adapter.hpp"
-#include "coupling.hpp"
-#include "field_map.hpp"
+#include "coupling/coupling.hpp"
+#include "map/field_map.hpp"
 #include "coupling_args.hpp"
 #include "errors.hpp"
 #include "ranks.hpp"
 #include "side_cache.hpp"
 #include "space_basis.hpp"
-#include "validation.hpp"
+#include "sides/validation.hpp"
 
 namespace {
 

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "adapter.hpp"
-#include "coupling3d.hpp"
-#include "field_map3d.hpp"
+#include "coupling/coupling3d.hpp"
+#include "map/field_map3d.hpp"
 #include "coupling_args.hpp"
 #include "errors.hpp"
 #include "side_cache.hpp"

@@ -14,7 +14,7 @@
 
 #include "adapter.hpp"
 #include "errors.hpp"
-#include "row_order.hpp"
+#include "sparse/row_order.hpp"
 
 void dlmfsi_register_matrix_sort();
 

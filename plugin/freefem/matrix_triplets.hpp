@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "csr_matrix.hpp"
+#include "sparse/csr_matrix.hpp"
 
 namespace dlmfsi_ff {
 

@@ -16,7 +16,7 @@
 #include "adapter.hpp"
 #include "errors.hpp"
 #include "matrix_triplets.hpp"
-#include "sparse.hpp"
+#include "sparse/sparse.hpp"
 
 void dlmfsi_register_patch_matrix();
 

@@ -25,7 +25,7 @@
 #include "adapter.hpp"
 #include "matrix_triplets.hpp"
 #include "share_sum.hpp"
-#include "sparse.hpp"
+#include "sparse/sparse.hpp"
 
 namespace {
 

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "basis.hpp"
+#include "fe/basis.hpp"
 
 namespace dlmfsi_ff {
 

@@ -19,7 +19,7 @@
 
 #include "adapter.hpp"
 #include "errors.hpp"
-#include "supermesh.hpp"
+#include "transfer/supermesh.hpp"
 
 void dlmfsi_register_supermesh();
 

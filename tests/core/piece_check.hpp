@@ -6,9 +6,9 @@
 #include <sstream>
 #include <string>
 
-#include "clip.hpp"
+#include "geometry/clip.hpp"
 #include "point.hpp"
-#include "predicates.hpp"
+#include "geometry/predicates.hpp"
 
 namespace dlmfsi::ref {
 

@@ -3,7 +3,7 @@
 // bug there cannot hide in the reference. (piece_check.hpp, included: the checks of a piece's shape,
 // which do use the core's orient2d.)
 #pragma once
-#include "clip.hpp"
+#include "geometry/clip.hpp"
 #include "piece_check.hpp"
 #include "point.hpp"
 

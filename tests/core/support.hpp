@@ -3,9 +3,9 @@
 #include <cmath>
 #include <random>
 
-#include "basis.hpp"
-#include "map.hpp"
-#include "mesh.hpp"
+#include "fe/basis.hpp"
+#include "map/map.hpp"
+#include "mesh/mesh.hpp"
 
 namespace dlmfsi::test {
 

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <string>
 
-#include "clip3d.hpp"
-#include "predicates3d.hpp"
+#include "geometry/clip3d.hpp"
+#include "geometry/predicates3d.hpp"
 #include "reference3d.hpp"
 
 namespace dlmfsi::test3d {
@@ -109,10 +109,10 @@ inline std::string piece_shape(const Piece3& p, const Tet& a, const Tet& b, doub
 #include <random>
 #include <vector>
 
-#include "coupling3d.hpp"
-#include "csr_matrix.hpp"
+#include "coupling/coupling3d.hpp"
+#include "sparse/csr_matrix.hpp"
 #include "errors.hpp"
-#include "mesh3d.hpp"
+#include "mesh/mesh3d.hpp"
 
 namespace dlmfsi::test3d {
 
@@ -212,8 +212,8 @@ inline Mesh3 quarter_turn(Mesh3 mesh, Point3 centre) {
 
 #include <map>
 
-#include "basis.hpp"
-#include "map3d.hpp"
+#include "fe/basis.hpp"
+#include "map/map3d.hpp"
 
 namespace dlmfsi::test3d {
 

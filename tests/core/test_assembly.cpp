@@ -11,10 +11,10 @@
 #include <thread>
 #include <vector>
 
-#include "coupling.hpp"
+#include "coupling/coupling.hpp"
 #include "errors.hpp"
-#include "field_map.hpp"
-#include "run_shares.hpp"
+#include "map/field_map.hpp"
+#include "parallel/run_shares.hpp"
 #include "support.hpp"
 
 using namespace dlmfsi;

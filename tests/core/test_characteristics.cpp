@@ -9,9 +9,9 @@
 #include <limits>
 #include <vector>
 
-#include "characteristics.hpp"
+#include "transfer/characteristics.hpp"
 #include "errors.hpp"
-#include "sides.hpp"
+#include "sides/sides.hpp"
 #include "support.hpp"
 
 using namespace dlmfsi;

@@ -5,9 +5,9 @@
 #include <random>
 #include <vector>
 
-#include "clip.hpp"
-#include "fluid_search.hpp"
-#include "predicates.hpp"
+#include "geometry/clip.hpp"
+#include "mesh/fluid_search.hpp"
+#include "geometry/predicates.hpp"
 #include "support.hpp"
 
 using namespace dlmfsi;

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "clip3d.hpp"
-#include "predicates3d.hpp"
+#include "geometry/clip3d.hpp"
+#include "geometry/predicates3d.hpp"
 #include "reference3d.hpp"
 #include "support3d.hpp"
 

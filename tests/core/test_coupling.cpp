@@ -3,10 +3,10 @@
 #include <cmath>
 #include <random>
 
-#include "clip.hpp"
-#include "coupling.hpp"
+#include "geometry/clip.hpp"
+#include "coupling/coupling.hpp"
 #include "errors.hpp"
-#include "rules.hpp"
+#include "fe/rules.hpp"
 #include "support.hpp"
 
 using namespace dlmfsi;

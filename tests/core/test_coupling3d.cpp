@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "coupling3d.hpp"
+#include "coupling/coupling3d.hpp"
 #include "errors.hpp"
-#include "rules.hpp"
+#include "fe/rules.hpp"
 #include "support3d.hpp"
 
 using namespace dlmfsi;

@@ -14,9 +14,9 @@
 #include <random>
 #include <vector>
 
-#include "clip.hpp"
-#include "fluid_search.hpp"
-#include "predicates.hpp"
+#include "geometry/clip.hpp"
+#include "mesh/fluid_search.hpp"
+#include "geometry/predicates.hpp"
 #include "reference.hpp"
 #include "support.hpp"
 

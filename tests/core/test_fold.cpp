@@ -7,9 +7,9 @@
 #include <random>
 
 #include "errors.hpp"
-#include "fold.hpp"
-#include "lattice.hpp"
-#include "triangle_map.hpp"
+#include "map/fold.hpp"
+#include "fe/lattice.hpp"
+#include "map/triangle_map.hpp"
 
 using namespace dlmfsi;
 

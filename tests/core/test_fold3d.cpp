@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "coupling3d.hpp"
+#include "coupling/coupling3d.hpp"
 #include "errors.hpp"
-#include "field_map3d.hpp"
-#include "fold3d.hpp"
-#include "rules.hpp"
+#include "map/field_map3d.hpp"
+#include "map/fold3d.hpp"
+#include "fe/rules.hpp"
 #include "support3d.hpp"
 
 using namespace dlmfsi;

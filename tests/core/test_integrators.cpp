@@ -6,16 +6,16 @@
 #include <cmath>
 #include <vector>
 
-#include "clip.hpp"
-#include "component_pairs.hpp"
-#include "coupling.hpp"
-#include "field_map.hpp"
-#include "integrate_batch.hpp"
-#include "integrate_moments.hpp"
-#include "integrate_points.hpp"
-#include "integrator.hpp"
-#include "local_block.hpp"
-#include "rules.hpp"
+#include "geometry/clip.hpp"
+#include "fe/component_pairs.hpp"
+#include "coupling/coupling.hpp"
+#include "map/field_map.hpp"
+#include "integration/integrate_batch.hpp"
+#include "integration/integrate_moments.hpp"
+#include "integration/integrate_points.hpp"
+#include "integration/integrator.hpp"
+#include "integration/local_block.hpp"
+#include "fe/rules.hpp"
 #include "support.hpp"
 
 using namespace dlmfsi;

@@ -10,10 +10,10 @@
 #include <random>
 #include <vector>
 
-#include "basis_fit.hpp"
-#include "lattice3d.hpp"
-#include "polynomial_basis3d.hpp"
-#include "polynomial_values3d.hpp"
+#include "fe/basis_fit.hpp"
+#include "fe/lattice3d.hpp"
+#include "fe/polynomial_basis3d.hpp"
+#include "fe/polynomial_values3d.hpp"
 #include "support.hpp"
 #include "support3d.hpp"
 

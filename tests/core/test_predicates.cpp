@@ -3,7 +3,7 @@
 #include <cmath>
 #include <random>
 
-#include "predicates.hpp"
+#include "geometry/predicates.hpp"
 
 using dlmfsi::orient2d;
 using dlmfsi::orient2d_exact;

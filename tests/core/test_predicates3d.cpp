@@ -6,7 +6,7 @@
 #include <limits>
 #include <random>
 
-#include "predicates3d.hpp"
+#include "geometry/predicates3d.hpp"
 #include "reference3d.hpp"
 
 using dlmfsi::orient3d;

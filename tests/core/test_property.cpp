@@ -42,10 +42,10 @@
 #include <string>
 #include <vector>
 
-#include "clip.hpp"
-#include "coupling.hpp"
-#include "fluid_search.hpp"
-#include "predicates.hpp"
+#include "geometry/clip.hpp"
+#include "coupling/coupling.hpp"
+#include "mesh/fluid_search.hpp"
+#include "geometry/predicates.hpp"
 #include "reference.hpp"
 #include "support.hpp"
 

@@ -23,10 +23,10 @@
 #include <random>
 #include <string>
 
-#include "clip3d.hpp"
-#include "coupling3d.hpp"
-#include "fluid_search3d.hpp"
-#include "predicates3d.hpp"
+#include "geometry/clip3d.hpp"
+#include "coupling/coupling3d.hpp"
+#include "mesh/fluid_search3d.hpp"
+#include "geometry/predicates3d.hpp"
 #include "reference3d.hpp"
 #include "support3d.hpp"
 

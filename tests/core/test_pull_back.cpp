@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "errors.hpp"
-#include "pull_back.hpp"
-#include "triangle_map.hpp"
+#include "map/pull_back.hpp"
+#include "map/triangle_map.hpp"
 
 using namespace dlmfsi;
 

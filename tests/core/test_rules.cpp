@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "rules.hpp"
+#include "fe/rules.hpp"
 
 using namespace dlmfsi;
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "rules.hpp"
+#include "fe/rules.hpp"
 
 using namespace dlmfsi;
 

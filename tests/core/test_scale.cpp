@@ -6,9 +6,9 @@
 #include <cmath>
 #include <vector>
 
-#include "coupling.hpp"
+#include "coupling/coupling.hpp"
 #include "errors.hpp"
-#include "rules.hpp"
+#include "fe/rules.hpp"
 #include "support.hpp"
 
 using namespace dlmfsi;

@@ -7,8 +7,8 @@
 #include <random>
 #include <utility>
 
-#include "fluid_search.hpp"
-#include "predicates.hpp"
+#include "mesh/fluid_search.hpp"
+#include "geometry/predicates.hpp"
 #include "support.hpp"
 
 using namespace dlmfsi;

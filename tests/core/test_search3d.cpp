@@ -9,8 +9,8 @@
 #include <random>
 #include <vector>
 
-#include "fluid_search3d.hpp"
-#include "predicates3d.hpp"
+#include "mesh/fluid_search3d.hpp"
+#include "geometry/predicates3d.hpp"
 #include "reference3d.hpp"
 #include "support3d.hpp"
 

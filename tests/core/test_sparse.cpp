@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "errors.hpp"
-#include "row_order.hpp"
-#include "sparse.hpp"
+#include "sparse/row_order.hpp"
+#include "sparse/sparse.hpp"
 
 using namespace dlmfsi;
 

@@ -6,9 +6,9 @@
 #include <utility>
 #include <vector>
 
-#include "clip.hpp"
+#include "geometry/clip.hpp"
 #include "errors.hpp"
-#include "supermesh.hpp"
+#include "transfer/supermesh.hpp"
 #include "support.hpp"
 
 using namespace dlmfsi;

@@ -12,8 +12,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "on_threads.hpp"
-#include "thread_team.hpp"
+#include "parallel/on_threads.hpp"
+#include "parallel/thread_team.hpp"
 
 using namespace dlmfsi;
 

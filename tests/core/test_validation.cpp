@@ -4,10 +4,10 @@
 
 #include <string>
 
-#include "coupling.hpp"
+#include "coupling/coupling.hpp"
 #include "errors.hpp"
 #include "support.hpp"
-#include "validation.hpp"
+#include "sides/validation.hpp"
 
 using namespace dlmfsi;
 

@@ -26,13 +26,13 @@
 #include <cstring>
 #include <limits>
 
-#include "clip.hpp"
+#include "geometry/clip.hpp"
 #include "errors.hpp"
-#include "fluid_search.hpp"
+#include "mesh/fluid_search.hpp"
 #include "fuzz_input.hpp"
-#include "mesh.hpp"
+#include "mesh/mesh.hpp"
 #include "piece_check.hpp"
-#include "predicates.hpp"
+#include "geometry/predicates.hpp"
 
 using namespace dlmfsi;
 using dlmfsi::fuzz::Input;

@@ -29,11 +29,11 @@
 #include <string>
 #include <vector>
 
-#include "clip3d.hpp"
+#include "geometry/clip3d.hpp"
 #include "errors.hpp"
-#include "fluid_search3d.hpp"
+#include "mesh/fluid_search3d.hpp"
 #include "fuzz_input.hpp"
-#include "predicates3d.hpp"
+#include "geometry/predicates3d.hpp"
 #include "reference3d.hpp"
 #include "support3d.hpp"
 

@@ -1,0 +1,115 @@
+#include "fe/polynomial_basis3d.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "fe/polynomial_fit.hpp"
+#include "fe/polynomial_values3d.hpp"
+
+namespace dlmfsi {
+
+namespace {
+// A point off every lattice and symmetry plane, where the element check takes place.
+constexpr Point3 kCheckPoint{0.2113248654, 0.3141592654, 0.1732050808};
+}  // namespace
+
+PolynomialBasis3::PolynomialBasis3(const Basis3& basis, const Mesh3& mesh, int degree, const std::vector<int>& components)
+    : basis_(basis),
+      frames_(mesh),
+      degree_(degree > kMaxLatticeDegree ? -1 : degree),
+      nc_(basis.components()),
+      functions_(listed_functions(basis, components)) {
+  sample_.resize(static_cast<size_t>(basis.local_dofs()) * nc_ * 4);
+  check_.resize(sample_.size());
+  if (degree_ < 0 || mesh.size() == 0) {
+    degree_ = -1;
+    return;
+  }
+  nm_ = monomial_count3(degree_);
+  reference_.resize(functions_.size() * nm_);
+  fit(0, reference_.data());
+  slot_.assign(mesh.size(), -1);
+  // Confirm the fit reproduces the basis (values and derivatives) off the lattice.
+  if (!fit_reproduces(basis_, {Point3{0.137, 0.291, 0.218}, Point3{0.52, 0.083, 0.171}},
+                      [&](Point3 xi, double* out) { evaluate(0, xi, out); }, functions_, sample_.data(),
+                      check_.data())) {
+    degree_ = -1;
+    return;
+  }
+  twin_ = twin_functions(reference_, nm_);
+  terms_.set(degree_, reference_.data(), functions_.size());
+  if (degree_ < kMaxLatticeDegree) terms_.prepare_moments();
+  for (int k = 1; k < mesh.size(); ++k) check(k);
+}
+
+void PolynomialBasis3::fit(int k, double* c) {
+  fit_on_lattice(basis_, k, functions_, nm_, vandermonde_inverse3(degree_),
+                 [this](int q) { return lattice_point3(degree_, q); },
+                 [this](Point3 xi, double* v) { monomial_values3(degree_, xi, v); }, sample_.data(), c);
+}
+
+void PolynomialBasis3::check(int k) {
+  // One evaluation decides whether element k shares the reference fit.
+  double v[monomial_count3(kMaxLatticeDegree)];
+  monomial_values3(degree_, kCheckPoint, v);
+  basis_.values(k, kCheckPoint, sample_.data());
+  if (fit_matches<3>(reference_.data(), nm_, v, functions_, sample_.data())) return;
+  slot_[k] = static_cast<int>(own_.size());
+  own_.resize(own_.size() + functions_.size() * nm_);
+  fit(k, &own_[slot_[k]]);
+}
+
+void PolynomialBasis3::evaluate_points(int k, const Point3* xi, int n, double* value, double* gradient) const {
+  if (shared(k) && !terms_.empty()) {
+    terms_.evaluate(twin_.empty() ? nullptr : twin_.data(), inverse_jacobian(k), xi, n, value, gradient);
+    return;
+  }
+  evaluate_polynomials3(degree_, coefficients(k), functions_.size(), nullptr, inverse_jacobian(k), xi, n, value,
+                        gradient);
+}
+
+void PolynomialBasis3::evaluate_gradient_sums(int k, const Point3* xi, const double* weight, int n, double* value,
+                                              double* gradient_sum) const {
+  if (shared(k) && !terms_.empty()) {
+    terms_.evaluate_gradient_sums(twin_.empty() ? nullptr : twin_.data(), inverse_jacobian(k), xi, weight, n, value,
+                                  gradient_sum);
+    return;
+  }
+  evaluate_polynomials3_gradient_sums(degree_, coefficients(k), functions_.size(), inverse_jacobian(k), xi, weight, n,
+                                      value, gradient_sum);
+}
+
+void PolynomialBasis3::evaluate(int k, Point3 xi, double* out) const {
+  if (degree_ < 0) {
+    basis_.evaluate(k, xi, out);
+    return;
+  }
+  const size_t width = functions_.size();
+  std::vector<double> value(width), gradient(3 * width);
+  evaluate_points(k, &xi, 1, value.data(), gradient.data());
+  for (size_t f = 0; f < width; ++f) {
+    double* o = out + functions_[f] * 4;
+    o[0] = value[f];
+    o[1] = gradient[3 * f];
+    o[2] = gradient[3 * f + 1];
+    o[3] = gradient[3 * f + 2];
+  }
+}
+
+void PolynomialBasis3::evaluate_affine(int k, Point3 xi, double* value, double* gradient) const {
+  const double* c = coefficients(k);
+  const double* j = inverse_jacobian(k);
+  for (size_t f = 0; f < functions_.size(); ++f, c += nm_) {
+    double* g = gradient + 3 * f;
+    if (nm_ == 1) {
+      value[f] = c[0];
+      g[0] = g[1] = g[2] = 0;
+      continue;
+    }
+    // monomials 1, xi1, xi2, xi3
+    value[f] = c[0] + c[1] * xi.x + c[2] * xi.y + c[3] * xi.z;
+    for (int a = 0; a < 3; ++a) g[a] = c[1] * j[a] + c[2] * j[3 + a] + c[3] * j[6 + a];
+  }
+}
+
+}  // namespace dlmfsi

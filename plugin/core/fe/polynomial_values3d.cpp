@@ -1,0 +1,249 @@
+#include "fe/polynomial_values3d.hpp"
+
+#include <algorithm>
+#include <vector>
+
+#include "fe/lattice3d.hpp"
+#include "fe/weighted_sum.hpp"
+
+namespace dlmfsi {
+
+namespace {
+
+// The rows >= 4 to form so that the rows marked in need are formed (need closed under monomial_parents3: a
+// parent's index is below its child's; need is changed), ascending.
+std::vector<int> rows_with_parents(std::vector<char>& need) {
+  const auto& parents = monomial_parents3();
+  for (int m = static_cast<int>(need.size()) - 1; m >= 4; --m)
+    if (need[m]) need[parents[m].parent] = 1;
+  std::vector<int> rows;
+  for (int m = 4; m < static_cast<int>(need.size()); ++m)
+    if (need[m]) rows.push_back(m);
+  return rows;
+}
+
+}  // namespace
+
+void PolynomialTerms3::set(int degree, const double* coef, std::size_t width) {
+  degree_ = degree;
+  width_ = width;
+  const int nm = monomial_count3(degree);
+  const auto& derivative = monomial_derivatives3(degree);
+  const int nm1 = degree > 0 ? monomial_count3(degree - 1) : 0;
+  constant_.assign(4 * width, 0.0);
+  start_.assign(1, 0);
+  monomial_.clear();
+  coefficient_.clear();
+  std::vector<double> e(3 * static_cast<std::size_t>(std::max(nm1, 1)));
+  auto add_polynomial = [&](std::size_t slot, const double* c, int count) {
+    constant_[slot] = c[0];
+    for (int m = 1; m < count; ++m)
+      if (c[m] != 0) {
+        monomial_.push_back(m);
+        coefficient_.push_back(c[m]);
+      }
+    start_.push_back(static_cast<int>(monomial_.size()));
+  };
+  for (std::size_t f = 0; f < width; ++f) {
+    const double* c = coef + f * nm;
+    add_polynomial(4 * f, c, nm);
+    // d/dxi_i of monomial m is factor * (monomial index) of degree - 1: one term each
+    std::fill(e.begin(), e.end(), 0.0);
+    for (int m = 1; m < nm; ++m)
+      for (int i = 0; i < 3; ++i)
+        if (derivative[m].index[i] >= 0) e[i * nm1 + derivative[m].index[i]] = derivative[m].factor[i] * c[m];
+    for (int i = 0; i < 3; ++i) {
+      if (nm1 == 0) {
+        start_.push_back(static_cast<int>(monomial_.size()));
+        continue;
+      }
+      add_polynomial(4 * f + 1 + i, &e[i * nm1], nm1);
+    }
+  }
+  // The monomial rows the sums read, with the rows they are formed from; and the monomials of degree - 1
+  // whose weighted sums the derivatives read.
+  std::vector<char> need(nm, 0), moment(std::max(nm1, 1), 0);
+  for (std::size_t slot = 0; slot < constant_.size(); ++slot)
+    for (int t = start_[slot]; t < start_[slot + 1]; ++t) {
+      need[monomial_[t]] = 1;
+      if (slot % 4 != 0) moment[monomial_[t]] = 1;
+    }
+  rows_ = rows_with_parents(need);
+  moments_.assign(1, 0);
+  for (int m = 1; m < nm1; ++m)
+    if (moment[m]) moments_.push_back(m);
+}
+
+namespace {
+
+// mono[m * n + p] = monomial m at xi[p], row by row: monomial 0 is 1, the degree-1 rows the coordinates,
+// and each further one of `rows` (ascending, closed under parents) a row before it times one coordinate
+// (monomial_parents3), so that every row is one product along the points. The other rows are not formed.
+void monomial_rows3(int degree, const std::vector<int>& rows, const Point3* xi, int n, double* mono) {
+  for (int p = 0; p < n; ++p) mono[p] = 1;
+  if (degree == 0) return;
+  double* x[3] = {mono + n, mono + 2 * static_cast<std::size_t>(n), mono + 3 * static_cast<std::size_t>(n)};
+  for (int p = 0; p < n; ++p) {
+    x[0][p] = xi[p].x;
+    x[1][p] = xi[p].y;
+    x[2][p] = xi[p].z;
+  }
+  const auto& parents = monomial_parents3();
+  for (int m : rows) {
+    const double* from = mono + static_cast<std::size_t>(parents[m].parent) * n;
+    const double* factor = x[parents[m].axis];
+    double* to = mono + static_cast<std::size_t>(m) * n;
+    for (int p = 0; p < n; ++p) to[p] = from[p] * factor[p];
+  }
+}
+
+// The rows of the twins (twin[f] >= 0, when twin is not null): row f of `stride` values a copy of row twin[f].
+void copy_twins(const int* twin, std::size_t width, std::size_t stride, double* rows) {
+  if (!twin) return;
+  for (std::size_t f = 0; f < width; ++f)
+    if (twin[f] >= 0) std::copy(rows + twin[f] * stride, rows + (twin[f] + 1) * stride, rows + f * stride);
+}
+
+// out[p] = constant + sum over the terms of coefficient * mono[monomial * n + p], term by term.
+inline void sum_terms(double constant, const int* monomial, const double* coefficient, int terms, const double* mono,
+                      int n, double* out) {
+  for (int p = 0; p < n; ++p) out[p] = constant;
+  for (int t = 0; t < terms; ++t) {
+    const double cm = coefficient[t];
+    const double* row = mono + static_cast<std::size_t>(monomial[t]) * n;
+    for (int p = 0; p < n; ++p) out[p] += cm * row[p];
+  }
+}
+
+}  // namespace
+
+void PolynomialTerms3::prepare_moments() {
+  const int d = degree_ + 1, nm = monomial_count3(d);
+  times_.assign(3 * monomial_.size(), 0);
+  std::vector<char> need(nm, 0);
+  for (int m = 0; m < 4; ++m) need[m] = 1;
+  for (std::size_t slot = 0; slot < constant_.size(); ++slot)
+    for (int t = start_[slot]; t < start_[slot + 1]; ++t) {
+      need[monomial_[t]] = 1;
+      if (slot % 4 != 0) continue;  // a derivative: its own monomial only
+      int a, b, c;
+      monomial_exponents3(monomial_[t], a, b, c);
+      const int times[3] = {monomial_index3(a + 1, b, c), monomial_index3(a, b + 1, c), monomial_index3(a, b, c + 1)};
+      for (int k = 0; k < 3; ++k) {
+        times_[3 * t + k] = times[k];
+        need[times[k]] = 1;
+      }
+    }
+  moment_list_.clear();
+  for (int m = 0; m < nm; ++m)
+    if (need[m]) moment_list_.push_back(m);
+  moment_rows_ = rows_with_parents(need);
+}
+
+void PolynomialTerms3::moments(const Point3* xi, const double* weight, int n, double* moment) const {
+  thread_local std::vector<double> scratch;
+  const std::size_t size = static_cast<std::size_t>(monomial_count3(degree_ + 1)) * n;
+  if (scratch.size() < size) scratch.resize(size);
+  double* mono = scratch.data();
+  monomial_rows3(degree_ + 1, moment_rows_, xi, n, mono);
+  for (int m : moment_list_) moment[m] = weighted_sum(weight, mono + static_cast<std::size_t>(m) * n, n);
+}
+
+void PolynomialTerms3::integrate(const int* twin, const double* j, const double* moment, double* first,
+                                 double* gradient_sum) const {
+  for (std::size_t f = 0; f < width_; ++f) {
+    if (twin && twin[f] >= 0) continue;  // copied below
+    const std::size_t value = 4 * f;
+    double* o = first + 4 * f;
+    for (int k = 0; k < 4; ++k) o[k] = constant_[value] * moment[k];  // monomials 1, xi1, xi2, xi3
+    for (int t = start_[value]; t < start_[value + 1]; ++t) {
+      const double c = coefficient_[t];
+      o[0] += c * moment[monomial_[t]];
+      for (int k = 0; k < 3; ++k) o[1 + k] += c * moment[times_[3 * t + k]];
+    }
+    double r[3];
+    for (int i = 0; i < 3; ++i) {
+      const std::size_t slot = value + 1 + i;
+      double sum = constant_[slot] * moment[0];
+      for (int t = start_[slot]; t < start_[slot + 1]; ++t) sum += coefficient_[t] * moment[monomial_[t]];
+      r[i] = sum;
+    }
+    for (int a = 0; a < 3; ++a) gradient_sum[3 * f + a] = r[0] * j[a] + r[1] * j[3 + a] + r[2] * j[6 + a];
+  }
+  copy_twins(twin, width_, 4, first);
+  copy_twins(twin, width_, 3, gradient_sum);
+}
+
+void PolynomialTerms3::evaluate(const int* twin, const double* j, const Point3* xi, int n, double* value,
+                                double* gradient) const {
+  const int nm = monomial_count3(degree_);
+  // Monomial-major: mono[m * n + p] is monomial m at point p, so that each sum runs along the points.
+  thread_local std::vector<double> scratch, reference;
+  if (scratch.size() < static_cast<std::size_t>(nm) * n) scratch.resize(static_cast<std::size_t>(nm) * n);
+  if (gradient && reference.size() < 3 * static_cast<std::size_t>(n)) reference.resize(3 * static_cast<std::size_t>(n));
+  double* mono = scratch.data();
+  monomial_rows3(degree_, rows_, xi, n, mono);
+  auto sum = [&](std::size_t slot, double* out) {
+    const int s = start_[slot], e = start_[slot + 1];
+    sum_terms(constant_[slot], monomial_.data() + s, coefficient_.data() + s, e - s, mono, n, out);
+  };
+  for (std::size_t f = 0; f < width_; ++f) {
+    if (twin && twin[f] >= 0) continue;  // copied below
+    sum(4 * f, value + f * n);
+    if (!gradient) continue;
+    double* r[3] = {reference.data(), reference.data() + n, reference.data() + 2 * n};
+    for (int i = 0; i < 3; ++i) sum(4 * f + 1 + i, r[i]);
+    // d phi / d x_a = sum_i d phi / d xi_i  d xi_i / d x_a
+    for (int a = 0; a < 3; ++a) {
+      double* g = gradient + (3 * f + a) * n;
+      for (int p = 0; p < n; ++p) g[p] = r[0][p] * j[a] + r[1][p] * j[3 + a] + r[2][p] * j[6 + a];
+    }
+  }
+  copy_twins(twin, width_, n, value);
+  if (gradient) copy_twins(twin, width_, 3 * static_cast<std::size_t>(n), gradient);
+}
+
+void PolynomialTerms3::evaluate_gradient_sums(const int* twin, const double* j, const Point3* xi, const double* weight,
+                                              int n, double* value, double* gradient_sum) const {
+  const int nm = monomial_count3(degree_), nm1 = degree_ > 0 ? monomial_count3(degree_ - 1) : 0;
+  thread_local std::vector<double> scratch, moment;
+  if (scratch.size() < static_cast<std::size_t>(nm) * n) scratch.resize(static_cast<std::size_t>(nm) * n);
+  const std::size_t moments = static_cast<std::size_t>(std::max(nm1, 1));
+  if (moment.size() < moments) moment.resize(moments);
+  double* mono = scratch.data();
+  monomial_rows3(degree_, rows_, xi, n, mono);
+  // M_m for the monomials of degree - 1 that the derivatives read (M_0 = the sum of the weights)
+  for (int m : moments_) moment[m] = weighted_sum(weight, mono + static_cast<std::size_t>(m) * n, n);
+  for (std::size_t f = 0; f < width_; ++f) {
+    if (twin && twin[f] >= 0) continue;  // copied below
+    const int s = start_[4 * f], e = start_[4 * f + 1];
+    sum_terms(constant_[4 * f], monomial_.data() + s, coefficient_.data() + s, e - s, mono, n, value + f * n);
+    double r[3];
+    for (int i = 0; i < 3; ++i) {
+      const std::size_t slot = 4 * f + 1 + i;
+      double sum = constant_[slot] * moment[0];
+      for (int t = start_[slot]; t < start_[slot + 1]; ++t) sum += coefficient_[t] * moment[monomial_[t]];
+      r[i] = sum;
+    }
+    for (int a = 0; a < 3; ++a) gradient_sum[3 * f + a] = r[0] * j[a] + r[1] * j[3 + a] + r[2] * j[6 + a];
+  }
+  copy_twins(twin, width_, n, value);
+  copy_twins(twin, width_, 3, gradient_sum);
+}
+
+void evaluate_polynomials3_gradient_sums(int degree, const double* coef, std::size_t width, const double* j,
+                                         const Point3* xi, const double* weight, int n, double* value,
+                                         double* gradient_sum) {
+  thread_local PolynomialTerms3 terms;
+  terms.set(degree, coef, width);
+  terms.evaluate_gradient_sums(nullptr, j, xi, weight, n, value, gradient_sum);
+}
+
+void evaluate_polynomials3(int degree, const double* coef, std::size_t width, const int* twin, const double* j,
+                           const Point3* xi, int n, double* value, double* gradient) {
+  thread_local PolynomialTerms3 terms;
+  terms.set(degree, coef, width);
+  terms.evaluate(twin, j, xi, n, value, gradient);
+}
+
+}  // namespace dlmfsi

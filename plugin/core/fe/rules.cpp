@@ -1,0 +1,233 @@
+#include "fe/rules.hpp"
+
+#include <cmath>
+#include <mutex>
+#include <utility>
+
+#include "errors.hpp"
+
+namespace dlmfsi {
+
+namespace {
+
+// P_n(x) and P_n'(x) by the three-term recurrence (n >= 1, |x| < 1).
+void legendre(int n, double x, double& p, double& dp) {
+  double p0 = 1, p1 = x;
+  for (int k = 2; k <= n; ++k) {
+    const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+    p0 = p1;
+    p1 = p2;
+  }
+  p = p1;
+  dp = n * (x * p1 - p0) / (x * x - 1);
+}
+
+}  // namespace
+
+void gauss_legendre(int n, std::vector<double>& nodes, std::vector<double>& weights) {
+  nodes.assign(n, 0);
+  weights.assign(n, 0);
+  const double pi = std::acos(-1.0);
+  for (int i = 0; i < n; ++i) {
+    // Newton on P_n from the Chebyshev-like first guess.
+    double x = std::cos(pi * (i + 0.75) / (n + 0.5)), p, dp;
+    for (int it = 0; it < 100; ++it) {
+      legendre(n, x, p, dp);
+      const double dx = p / dp;
+      x -= dx;
+      if (std::fabs(dx) < 1e-16) break;
+    }
+    legendre(n, x, p, dp);  // the derivative at the converged node, for the weight 2 / ((1 - x^2) P_n'^2)
+    nodes[i] = 0.5 * (1 - x);
+    weights[i] = 1.0 / ((1 - x * x) * dp * dp);  // half of the [-1,1] weight
+  }
+}
+
+namespace {
+
+// The symmetric orbits of a point in barycentric coordinates: (a, a, 1-2a) gives 3 points, (a, b, c) 6.
+void orbit3(std::vector<RulePoint>& r, double a, double w) {
+  r.push_back({{a, a}, w});
+  r.push_back({{1 - 2 * a, a}, w});
+  r.push_back({{a, 1 - 2 * a}, w});
+}
+
+void orbit6(std::vector<RulePoint>& r, double a, double b, double w) {
+  const double c = 1 - a - b;
+  for (auto [u, v] : {std::pair{a, b}, std::pair{b, a}, std::pair{a, c}, std::pair{c, a}, std::pair{b, c}, std::pair{c, b}})
+    r.push_back({{u, v}, w});
+}
+
+std::vector<RulePoint> make_rule(int degree) {
+  std::vector<RulePoint> r;
+  if (degree <= 1) {
+    r.push_back({{1.0 / 3, 1.0 / 3}, 1.0});
+  } else if (degree == 2) {
+    orbit3(r, 1.0 / 6, 1.0 / 3);
+  } else if (degree == 4) {  // Dunavant
+    orbit3(r, 0.445948490915965, 0.223381589678011);
+    orbit3(r, 0.091576213509771, 0.109951743655322);
+  } else if (degree == 5) {  // Radon
+    const double s = std::sqrt(15.0);
+    r.push_back({{1.0 / 3, 1.0 / 3}, 9.0 / 40});
+    orbit3(r, (6 - s) / 21, (155 - s) / 1200);
+    orbit3(r, (6 + s) / 21, (155 + s) / 1200);
+  } else if (degree == 6) {  // Dunavant
+    orbit3(r, 0.249286745170910, 0.116786275726379);
+    orbit3(r, 0.063089014491502, 0.050844906370207);
+    orbit6(r, 0.310352451033784, 0.053145049844817, 0.082851075618374);
+  } else if (degree == 7 || degree == 8) {  // Dunavant degree 8 (16 points; the product rule of degree 7 has 20)
+    r.push_back({{1.0 / 3, 1.0 / 3}, 0.144315607677787});
+    orbit3(r, 0.459292588292723, 0.095091634267285);
+    orbit3(r, 0.170569307751760, 0.103217370534718);
+    orbit3(r, 0.050547228317031, 0.032458497623198);
+    orbit6(r, 0.263112829634638, 0.008394777409958, 0.027230314174435);
+  } else {
+    std::vector<double> xu, wu, xv, wv;
+    gauss_legendre((degree + 3) / 2, xu, wu);
+    gauss_legendre((degree + 2) / 2, xv, wv);
+    for (size_t i = 0; i < xu.size(); ++i)
+      for (size_t j = 0; j < xv.size(); ++j)
+        r.push_back({{xu[i], (1 - xu[i]) * xv[j]}, 2 * wu[i] * wv[j] * (1 - xu[i])});
+  }
+  return r;
+}
+
+}  // namespace
+
+namespace {
+
+// Eigenvalues d[0..n) and first components z[0..n) of the normalized eigenvectors of the symmetric
+// tridiagonal matrix with diagonal d and off-diagonal e[1..n) (e[0] unused): implicit QL with shifts.
+void tridiagonal_eigen(int n, std::vector<double>& d, std::vector<double> e, std::vector<double>& z) {
+  z.assign(n, 0.0);
+  z[0] = 1;  // the first row of the eigenvector matrix, rotated along with it
+  for (int i = 1; i < n; ++i) e[i - 1] = e[i];
+  e[n - 1] = 0;
+  for (int l = 0; l < n; ++l) {
+    for (int iter = 0; iter < 60; ++iter) {
+      int m = l;
+      for (; m < n - 1; ++m) {
+        const double dd = std::fabs(d[m]) + std::fabs(d[m + 1]);
+        if (std::fabs(e[m]) + dd == dd) break;
+      }
+      if (m == l) break;
+      double g = (d[l + 1] - d[l]) / (2 * e[l]);
+      double r = std::hypot(g, 1.0);
+      g = d[m] - d[l] + e[l] / (g + (g >= 0 ? r : -r));
+      double s = 1, c = 1, p = 0;
+      int i = m - 1;
+      for (; i >= l; --i) {
+        double f = s * e[i];
+        const double b = c * e[i];
+        r = std::hypot(f, g);
+        e[i + 1] = r;
+        if (r == 0) {
+          d[i + 1] -= p;
+          e[m] = 0;
+          break;
+        }
+        s = f / r;
+        c = g / r;
+        g = d[i + 1] - p;
+        r = (d[i] - g) * s + 2 * c * b;
+        p = s * r;
+        d[i + 1] = g + p;
+        g = c * r - b;
+        f = z[i + 1];
+        z[i + 1] = s * z[i] + c * f;
+        z[i] = c * z[i] - s * f;
+      }
+      if (r == 0 && i >= l) continue;
+      d[l] -= p;
+      e[l] = g;
+      e[m] = 0;
+    }
+  }
+}
+
+}  // namespace
+
+void gauss_jacobi(int n, int alpha, std::vector<double>& nodes, std::vector<double>& weights) {
+  // Jacobi polynomials P^(alpha, 0) on [-1, 1] (weight (1 - x)^alpha): recurrence coefficients
+  //   a_k = (beta^2 - alpha^2) / ((2k + s)(2k + s + 2)), s = alpha + beta,
+  //   b_k = sqrt(4k (k + alpha)(k + beta)(k + s) / ((2k + s)^2 (2k + s + 1)(2k + s - 1))),
+  // mu0 = 2^(alpha + 1) / (alpha + 1); then u = (1 + x) / 2 and w = mu0 z^2 / 2^(alpha + 1).
+  const double a = alpha, b = 0, s = a + b;
+  std::vector<double> d(n), e(n, 0.0), z;
+  for (int k = 0; k < n; ++k) {
+    const double t = 2 * k + s;
+    d[k] = k == 0 ? (b - a) / (s + 2) : (b * b - a * a) / (t * (t + 2));
+    if (k > 0) e[k] = std::sqrt(4.0 * k * (k + a) * (k + b) * (k + s) / (t * t * (t + 1) * (t - 1)));
+  }
+  tridiagonal_eigen(n, d, e, z);
+  nodes.resize(n);
+  weights.resize(n);
+  for (int i = 0; i < n; ++i) {
+    nodes[i] = 0.5 * (1 + d[i]);
+    weights[i] = z[i] * z[i] / (alpha + 1);
+  }
+}
+
+namespace {
+
+std::vector<RulePoint3> make_tetrahedron_rule(int degree) {
+  std::vector<RulePoint3> r;
+  if (degree <= 1) {
+    r.push_back({{0.25, 0.25, 0.25}, 1.0});
+  } else if (degree == 2) {
+    const double a = (5 - std::sqrt(5.0)) / 20, b = 1 - 3 * a;
+    for (Point3 p : {Point3{a, a, a}, Point3{b, a, a}, Point3{a, b, a}, Point3{a, a, b}}) r.push_back({p, 0.25});
+  } else if (degree == 4 || degree == 5) {
+    // The symmetric 14-point rule of degree 5: two orbits (a, a, a, 1 - 3a) and one (b, b, 1/2 - b, 1/2 - b)
+    // in barycentric coordinates; nodes and weights solved here from the six moment equations of the
+    // symmetric polynomials of degree <= 5 (1, e2, e3, e2^2, e4, e2 e3), to round-off.
+    auto orbit4 = [&r](double a, double w) {
+      const double c = 1 - 3 * a;
+      for (Point3 p : {Point3{a, a, a}, Point3{c, a, a}, Point3{a, c, a}, Point3{a, a, c}}) r.push_back({p, w});
+    };
+    orbit4(0.09273525031089248, 0.07349304311636379);
+    orbit4(0.31088591926330084, 0.11268792571801808);
+    const double b = 0.045503704125646534, c = 0.5 - b, w = 0.04254602077707878;
+    // barycentric (l0, l1, l2, l3) with two entries b and two c; xi = (l1, l2, l3)
+    for (Point3 p : {Point3{b, c, c}, Point3{c, b, c}, Point3{c, c, b}, Point3{c, b, b}, Point3{b, c, b}, Point3{b, b, c}})
+      r.push_back({p, w});
+  } else {
+    const int n = (degree + 2) / 2;
+    std::vector<double> xu, wu, xv, wv, xw, ww;
+    gauss_jacobi(n, 2, xu, wu);
+    gauss_jacobi(n, 1, xv, wv);
+    gauss_jacobi(n, 0, xw, ww);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        for (int k = 0; k < n; ++k)
+          r.push_back({{xu[i], (1 - xu[i]) * xv[j], (1 - xu[i]) * (1 - xv[j]) * xw[k]}, 6 * wu[i] * wv[j] * ww[k]});
+  }
+  return r;
+}
+
+}  // namespace
+
+const std::vector<RulePoint3>& tetrahedron_rule(int degree) {
+  constexpr int kMax = 40;
+  if (degree < 0 || degree > kMax) throw Error("quadrature degree " + std::to_string(degree) + " outside [0, 40]");
+  static std::vector<RulePoint3> rules[kMax + 1];
+  static std::once_flag once;
+  std::call_once(once, [] {
+    for (int d = 0; d <= kMax; ++d) rules[d] = make_tetrahedron_rule(d);
+  });
+  return rules[degree];
+}
+
+const std::vector<RulePoint>& triangle_rule(int degree) {
+  constexpr int kMax = 60;
+  if (degree < 0 || degree > kMax) throw Error("quadrature degree " + std::to_string(degree) + " outside [0, 60]");
+  static std::vector<RulePoint> rules[kMax + 1];
+  static std::once_flag once;
+  std::call_once(once, [] {
+    for (int d = 0; d <= kMax; ++d) rules[d] = make_rule(d);
+  });
+  return rules[degree];
+}
+
+}  // namespace dlmfsi

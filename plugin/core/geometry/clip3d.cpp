@@ -1,0 +1,435 @@
+#include "geometry/clip3d.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <initializer_list>
+#include <utility>
+
+#include "geometry/predicates3d.hpp"
+
+namespace dlmfsi {
+
+namespace {
+
+// Edges of a tetrahedron by vertex pair (k < l), and the index of edge (k, l).
+constexpr int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+constexpr int kEdgeIndex[4][4] = {{-1, 0, 1, 2}, {0, -1, 3, 4}, {1, 3, -1, 5}, {2, 4, 5, -1}};
+// Face i of a tetrahedron (opposite vertex i): its vertices in increasing order.
+constexpr int kFace[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+
+// The planes (bits) of a tetrahedron's faces that contain its vertex i, or its edge (k, l).
+inline unsigned faces_at_vertex(int i) { return 0xFu & ~(1u << i); }
+inline unsigned faces_at_edge(int k, int l) { return 0xFu & ~(1u << k) & ~(1u << l); }
+
+// kStraddling.pairs[pos][neg]: the edges e whose ends lie strictly on either side of a plane, as bits 4 e (the
+// layout of crossing_pairs below), from the masks of the vertices strictly on its positive and negative side.
+constexpr unsigned straddling(unsigned pos, unsigned neg) {
+  unsigned edges = 0;
+  for (int e = 0; e < 6; ++e) {
+    const unsigned k = 1u << kEdge[e][0], l = 1u << kEdge[e][1];
+    if (((pos & k) && (neg & l)) || ((pos & l) && (neg & k))) edges |= 1u << (4 * e);
+  }
+  return edges;
+}
+struct StraddlingTable {
+  unsigned pairs[16][16];
+  constexpr StraddlingTable() : pairs() {
+    for (unsigned pos = 0; pos < 16; ++pos)
+      for (unsigned neg = 0; neg < 16; ++neg) pairs[pos][neg] = straddling(pos, neg);
+  }
+};
+constexpr StraddlingTable kStraddling;
+
+// The pairs (edge e of one tetrahedron, face plane j of the other) where the edge crosses the plane strictly,
+// as bits 4 e + j (so that visiting the set bits upwards goes edge by edge, plane by plane), from the
+// vertices' sides: pos[j] and neg[j] the masks of the vertices strictly on the positive and negative side of
+// plane j.
+inline unsigned crossing_pairs(const unsigned pos[4], const unsigned neg[4]) {
+  unsigned pairs = 0;
+  for (int j = 0; j < 4; ++j) pairs |= kStraddling.pairs[pos[j]][neg[j]] << j;
+  return pairs;
+}
+
+// The side (+1, 0, -1) of vertex v of a plane, from the masks of the vertices strictly on its positive and
+// negative side.
+inline int side_in(unsigned pos, unsigned neg, int v) {
+  return static_cast<int>(pos >> v & 1u) - static_cast<int>(neg >> v & 1u);
+}
+
+// kPermutationSign[c][o]: the sign of the permutation (c, o, u, v) of (0, 1, 2, 3), u < v the other two.
+constexpr int kPermutationSign[4][4] = {{0, 1, -1, 1}, {-1, 0, 1, -1}, {1, -1, 0, 1}, {-1, 1, -1, 0}};
+
+// Where an edge (s, e) of one tetrahedron t' crosses the plane of face `cut` of a positively oriented
+// tetrahedron t strictly, the sign of the crossing X with respect to the plane of another face `other` of t
+// (the side functions f: f_j(t[j]) = det t > 0). The ends' signs side_s, side_e decide it unless they are
+// strictly opposite (X lies strictly between s and e). Otherwise, with (u, v), u < v, the edge of t where the
+// two planes meet,
+//   f_other(X) (f_cut(s) - f_cut(e)) = f_cut(s) f_other(e) - f_cut(e) f_other(s) = kappa orient3d(s, e, t_u, t_v)
+// (both sides affine in s and in e, antisymmetric, zero where the line s e meets the edge's line), and
+// s = t[cut], e = t[other] give det(t)^2 > 0 on the left, so kappa has the sign of the permutation
+// (cut, other, u, v); f_cut(s) - f_cut(e) has the sign of cut_side_s. orient() gives the orientation's
+// sign, asked only then.
+template <class Orient>
+inline int crossing_side(int side_s, int side_e, int cut_side_s, int permutation_sign, Orient&& orient) {
+  if (side_s >= 0 && side_e >= 0) return side_s > 0 || side_e > 0 ? 1 : 0;
+  if (side_s <= 0 && side_e <= 0) return -1;
+  return permutation_sign * orient() * cut_side_s;
+}
+
+inline void sort2(Point3& p, Point3& q) {
+  if (lex_less(q, p)) std::swap(p, q);
+}
+
+inline void sort3(Point3& x, Point3& y, Point3& z) {
+  sort2(x, y);
+  sort2(y, z);
+  sort2(x, y);
+}
+
+// Clamps p to the box of the points given (where the constructed point is known to lie).
+inline Point3 clamp_to(Point3 p, Point3 lo, Point3 hi) {
+  return {std::min(hi.x, std::max(lo.x, p.x)), std::min(hi.y, std::max(lo.y, p.y)), std::min(hi.z, std::max(lo.z, p.z))};
+}
+
+struct Box {
+  Point3 lo{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, hi{HUGE_VAL, HUGE_VAL, HUGE_VAL};
+  // intersect with the box of the points
+  void meet(std::initializer_list<Point3> points) {
+    Point3 l = *points.begin(), h = l;
+    for (Point3 p : points) {
+      l = {std::min(l.x, p.x), std::min(l.y, p.y), std::min(l.z, p.z)};
+      h = {std::max(h.x, p.x), std::max(h.y, p.y), std::max(h.z, p.z)};
+    }
+    lo = {std::max(lo.x, l.x), std::max(lo.y, l.y), std::max(lo.z, l.z)};
+    hi = {std::min(hi.x, h.x), std::min(hi.y, h.y), std::min(hi.z, h.z)};
+  }
+};
+
+// A vertex of the piece with the planes it lies on. Plain doubles rather than a Point3 (whose members are
+// zero-initialized): clip's array of 32 is then not cleared on every call.
+struct Candidate {
+  double x, y, z;
+  unsigned planes;
+  Point3 p() const { return {x, y, z}; }
+};
+
+// Orders the vertices of face plane `plane` (indices in list[0..m)) around the face by floating-point
+// angles in the projection along the dominant axis of the normal: the guard for plane sets that do not
+// form one cycle (not seen for finite input).
+void order_by_angles(const Point3* v, int* list, int m, Point3 normal) {
+  const double ax = std::fabs(normal.x), ay = std::fabs(normal.y), az = std::fabs(normal.z);
+  const int axis = ax >= ay && ax >= az ? 0 : (ay >= az ? 1 : 2);
+  auto uv = [axis](Point3 p) { return axis == 0 ? Point{p.y, p.z} : axis == 1 ? Point{p.z, p.x} : Point{p.x, p.y}; };
+  Point mean{0, 0};
+  for (int k = 0; k < m; ++k) mean = mean + (1.0 / m) * uv(v[list[k]]);
+  std::sort(list, list + m, [&](int i, int j) {
+    const Point pi = uv(v[i]) - mean, pj = uv(v[j]) - mean;
+    return std::atan2(pi.y, pi.x) < std::atan2(pj.y, pj.x);
+  });
+}
+
+// The piece from its vertices and their plane sets: vertices sorted lexicographically, each face's cycle
+// from the shared planes. normal(plane) gives a normal of a plane for the guard.
+template <class Normal>
+Piece3 assemble(const Candidate* c, int n, Normal&& normal) {
+  Piece3 out;
+  // An index sort (moving 32-byte candidates cost more than comparing them).
+  int order[32];
+  for (int k = 0; k < n; ++k) order[k] = k;
+  for (int k = 1; k < n; ++k)
+    for (int m = k; m > 0 && lex_less(c[order[m]].p(), c[order[m - 1]].p()); --m) std::swap(order[m], order[m - 1]);
+  out.n = std::min(n, Piece3::kMaxVertices);
+  for (int k = 0; k < out.n; ++k) {
+    out.v[k] = c[order[k]].p();
+    out.planes[k] = static_cast<unsigned char>(c[order[k]].planes);
+  }
+  const unsigned char* planes = out.planes;
+  // on[plane]: the vertices on that plane (bit k for vertex k).
+  unsigned on[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  for (int k = 0; k < out.n; ++k)
+    for (unsigned p = planes[k]; p != 0; p &= p - 1) on[__builtin_ctz(p)] |= 1u << k;
+  int used = 0;
+  for (int plane = 0; plane < 8; ++plane) {
+    const unsigned bit = 1u << plane;
+    int list[Piece3::kMaxVertices], m = 0;
+    for (unsigned v = on[plane]; v != 0; v &= v - 1) list[m++] = __builtin_ctz(v);
+    if (m < 3 || out.faces == Piece3::kMaxFaces || used + m > Piece3::kMaxFaceIndices) continue;
+    // The cycle: from the first vertex to its lower-numbered neighbour, then on to the neighbour that is
+    // not the previous vertex; every vertex must have exactly two neighbours. v's neighbours on this face:
+    // the other vertices of the face that share another plane with v.
+    auto neighbours = [&](int v, int* nb) {
+      unsigned shared = 0;
+      for (unsigned p = planes[v] & ~bit; p != 0; p &= p - 1) shared |= on[__builtin_ctz(p)];
+      const unsigned found = on[plane] & shared & ~(1u << v);
+      if (found != 0) nb[0] = __builtin_ctz(found);
+      const unsigned rest = found & (found - 1);
+      if (rest != 0) nb[1] = __builtin_ctz(rest);
+      return (found != 0) + (rest != 0) + ((rest & (rest - 1)) != 0);  // how many, up to 3
+    };
+    int cycle[Piece3::kMaxVertices], length = 0;
+    bool ok = true;
+    int previous = -1, current = list[0];
+    while (ok && length < m) {
+      cycle[length++] = current;
+      int nb[2] = {-1, -1};
+      if (neighbours(current, nb) != 2) {
+        ok = false;
+        break;
+      }
+      int next = previous < 0 ? std::min(nb[0], nb[1]) : (nb[0] == previous ? nb[1] : nb[0]);
+      if (previous >= 0 && nb[0] != previous && nb[1] != previous) ok = false;
+      previous = current;
+      current = next;
+    }
+    ok = ok && length == m && current == list[0];
+    if (!ok) {
+      out.exact = false;
+      order_by_angles(out.v, list, m, normal(plane));
+      std::copy(list, list + m, cycle);
+    }
+    for (int k = 0; k < m; ++k) out.face_index[used + k] = static_cast<unsigned char>(cycle[k]);
+    used += m;
+    out.face_start[++out.faces] = used;
+  }
+  return out;
+}
+
+Point3 face_normal(const Point3 t[4], int i) {
+  const Point3 p = t[kFace[i][0]], q = t[kFace[i][1]], r = t[kFace[i][2]];
+  return cross(q - p, r - p);
+}
+
+// 2^-e with 2^e about the largest |coordinate| of the points: scaling by it is exact (unless a coordinate
+// falls below 2^-1022 on the way) and keeps the determinants below representable at any scale (clamped
+// so that the factor itself is a normal double).
+inline double unit_scale(std::initializer_list<Point3> points) {
+  double m = 0;
+  for (Point3 v : points) m = std::max({m, std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+  // e as frexp gives it (m = f 2^e, 0.5 <= f < 1), from m's exponent field: field - 1022 for a normal m,
+  // at most -1022 (clamped to -1000) for a subnormal one, 0 for 0 and for inf; then 2^-e from its field.
+  std::uint64_t bits;
+  std::memcpy(&bits, &m, sizeof bits);
+  const int field = static_cast<int>(bits >> 52) & 0x7FF;
+  const int e = field == 0 ? (m == 0 ? 0 : -1000) : field == 0x7FF ? 0 : std::min(1000, std::max(-1000, field - 1022));
+  const std::uint64_t scale_bits = static_cast<std::uint64_t>(1023 - e) << 52;
+  double scale;
+  std::memcpy(&scale, &scale_bits, sizeof scale);
+  return scale;
+}
+
+// The point p + t (q - p) = q + (1 - t) (p - q), t = vp / (vp - vq), for the signed distances vp, vq (of
+// opposite signs) of p and q from the line or plane crossed: from the endpoint nearer to it.
+inline Point3 between(Point3 p, Point3 q, double vp, double vq) {
+  if (std::fabs(vp) <= std::fabs(vq)) {
+    const double t = std::min(1.0, std::max(0.0, vp / (vp - vq)));  // also maps NaN to 0
+    return p + t * (q - p);
+  }
+  const double t = std::min(1.0, std::max(0.0, vq / (vq - vp)));
+  return q + t * (p - q);
+}
+
+}  // namespace
+
+Point3 crossing(Point3 p, Point3 q, Point3 x, Point3 y, Point3 z) {
+  sort2(p, q);
+  sort3(x, y, z);
+  // The signed volumes vp = det [y - x, z - x, p - x] and vq have opposite signs, so vp - vq does not
+  // cancel; t = vp / (vp - vq) is accurate when both are. Each is evaluated in floating point with its
+  // error bound, on coordinates scaled near 1 so that nothing overflows; exactly when the bounds exceed
+  // 2^-44 of |vp| + |vq| (an edge nearly parallel to the plane, a thin face, tiny differences), on the
+  // coordinates themselves (the scaling rounds subnormal ones) and in units of the larger, however far
+  // below the doubles the two lie.
+  const double k = unit_scale({p, q, x, y, z});
+  const Point3 sp = k * p, sq = k * q, sx = k * x, sy = k * y, sz = k * z;
+  double bp, bq;
+  double vp = orient3d_estimate(sx, sy, sz, sp, bp), vq = orient3d_estimate(sx, sy, sz, sq, bq);
+  if (!(bp + bq <= 0x1p-44 * (std::fabs(vp) + std::fabs(vq))))
+    to_common_scale(orient3d_value(x, y, z, p), orient3d_value(x, y, z, q), vp, vq);
+  // The crossing lies on the segment and in the face: the boxes' intersection bounds it.
+  Box box;
+  box.meet({p, q});
+  box.meet({x, y, z});
+  return clamp_to(between(p, q, vp, vq), box.lo, box.hi);
+}
+
+Point3 crossing(Point3 p, Point3 q, Point3 r, Point3 s) {
+  sort2(p, q);
+  sort2(r, s);
+  if (lex_less(r, p) || (r == p && lex_less(s, q))) {
+    std::swap(p, r);
+    std::swap(q, s);
+  }
+  // In the common plane, seen along the axis where its normal is largest (any axis with a non-zero
+  // component keeps orientations; the largest keeps them best conditioned): t = op / (op - oq) with op,
+  // oq the orientations of p and q against the line r s (opposite signs), estimated or exact as above.
+  const double k = unit_scale({p, q, r, s});
+  const Point3 sp = k * p, sq = k * q, sr = k * r, ss = k * s;
+  const Point3 n1 = cross(sq - sp, sr - sp), n2 = cross(sq - sp, ss - sp);
+  const Point3 n = dot(n1, n1) >= dot(n2, n2) ? n1 : n2;
+  const double ax = std::fabs(n.x), ay = std::fabs(n.y), az = std::fabs(n.z);
+  const int axis = ax >= ay && ax >= az ? 0 : (ay >= az ? 1 : 2);
+  auto drop = [axis](Point3 v) { return axis == 0 ? Point{v.y, v.z} : axis == 1 ? Point{v.z, v.x} : Point{v.x, v.y}; };
+  double bp, bq;
+  double op = orient2d_estimate(drop(sr), drop(ss), drop(sp), bp), oq = orient2d_estimate(drop(sr), drop(ss), drop(sq), bq);
+  if (!(bp + bq <= 0x1p-44 * (std::fabs(op) + std::fabs(oq))))
+    to_common_scale(orient2d_value(drop(r), drop(s), drop(p)), orient2d_value(drop(r), drop(s), drop(q)), op, oq);
+  Box box;
+  box.meet({p, q});
+  box.meet({r, s});
+  return clamp_to(between(p, q, op, oq), box.lo, box.hi);
+}
+
+Piece3 clip(const Point3 a[4], const Point3 b[4]) {
+  unsigned beyond;
+  return clip(a, b, beyond);
+}
+
+Piece3 clip(const Point3 a[4], const Point3 b[4], unsigned& beyond) {
+  TetFaces a_faces;
+  a_faces.set(a);
+  return clip(a, a_faces, b, beyond);
+}
+
+Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsigned& beyond) {
+  beyond = 0;
+  TetFaces b_faces;
+  b_faces.set(b);
+  auto normal = [&](int plane) { return plane < 4 ? face_normal(a, plane) : face_normal(b, plane - 4); };
+  Candidate c[32];
+  int n = 0;
+  // A whole tetrahedron: its own vertices, face j the other three (no sorting, no walk).
+  auto whole = [](const Point3 t[4], int shift) {
+    Piece3 out;
+    out.n = 4;
+    out.faces = 4;
+    for (int i = 0; i < 4; ++i) {
+      out.v[i] = t[i];
+      out.planes[i] = static_cast<unsigned char>(faces_at_vertex(i) << shift);
+      for (int k = 0; k < 3; ++k) out.face_index[3 * i + k] = static_cast<unsigned char>(kFace[i][k]);
+      out.face_start[i + 1] = 3 * (i + 1);
+    }
+    return out;
+  };
+  // pos_b[j], neg_b[j]: the vertices of a strictly on the inner, outer side of b's face j (bit i); pos_a,
+  // neg_a the same for b's vertices and a's faces (side_in reads a vertex's side from them).
+  unsigned pos_b[4], neg_b[4], pos_a[4], neg_a[4];
+  for (int j = 0; j < 4; ++j) {
+    pos_b[j] = neg_b[j] = 0;
+    for (int i = 0; i < 4; ++i) {
+      const int side = b_faces.side(j, a[i]);
+      if (side > 0) pos_b[j] |= 1u << i;
+      if (side < 0) neg_b[j] |= 1u << i;
+    }
+    if (pos_b[j] == 0) return Piece3{};  // face j's plane separates
+    if (neg_b[j] != 0) beyond |= 1u << j;
+  }
+  if (beyond == 0) return whole(a, 0);  // a in closed b
+  bool b_inside = true;
+  for (int i = 0; i < 4; ++i) {
+    pos_a[i] = neg_a[i] = 0;
+    for (int j = 0; j < 4; ++j) {
+      const int side = a_faces.side(i, b[j]);
+      if (side > 0) pos_a[i] |= 1u << j;
+      if (side < 0) neg_a[i] |= 1u << j;
+    }
+    if (pos_a[i] == 0) return Piece3{};
+    if (neg_a[i] != 0) b_inside = false;
+  }
+  if (b_inside) return whole(b, 4);
+
+  auto add = [&](Point3 p, unsigned planes) {
+    if (n < 32) c[n++] = {p.x, p.y, p.z, planes};
+  };
+  // Vertices of a in closed b: on a's three faces at the vertex and on b's faces where the side is 0.
+  const unsigned a_outside = neg_b[0] | neg_b[1] | neg_b[2] | neg_b[3];
+  for (int i = 0; i < 4; ++i) {
+    if (a_outside >> i & 1u) continue;
+    unsigned planes = faces_at_vertex(i);
+    for (int j = 0; j < 4; ++j)
+      if (side_in(pos_b[j], neg_b[j], i) == 0) planes |= 1u << (4 + j);
+    add(a[i], planes);
+  }
+  // Vertices of b in closed a that are not vertices of a.
+  const unsigned b_outside = neg_a[0] | neg_a[1] | neg_a[2] | neg_a[3];
+  for (int j = 0; j < 4; ++j) {
+    if (b_outside >> j & 1u) continue;
+    if (b[j] == a[0] || b[j] == a[1] || b[j] == a[2] || b[j] == a[3]) continue;
+    unsigned planes = faces_at_vertex(j) << 4;
+    for (int i = 0; i < 4; ++i)
+      if (side_in(pos_a[i], neg_a[i], j) == 0) planes |= 1u << i;
+    add(b[j], planes);
+  }
+  // The orientations of a's edge lines against b's: edge(ea) of a, edge(eb) of b,
+  // orient3d(a[p], a[q], b[x], b[y]) = orient3d(b[x], b[y], a[p], a[q]) (an even permutation).
+  signed char table[6][6];
+  for (auto& row : table)
+    for (auto& t : row) t = 2;  // not computed yet
+  auto orientation = [&](int ea, int eb) {
+    signed char& t = table[ea][eb];
+    if (t == 2) t = static_cast<signed char>(orient3d(a[kEdge[ea][0]], a[kEdge[ea][1]], b[kEdge[eb][0]], b[kEdge[eb][1]]));
+    return static_cast<int>(t);
+  };
+  // An edge crossing the plane of a face (k, l, m) of the other tetrahedron strictly: the crossing's sides
+  // of that tetrahedron's other three face planes (crossing_side) say where it passes: all inside, through
+  // the open face; on one of them and inside the other two, through the open edge where that plane meets the
+  // face; on two, through a vertex (found above as a vertex in the other tetrahedron).
+  unsigned long long edge_pairs = 0;  // the edge-edge crossings already added, bit 6 * ea + eb
+  for (unsigned pairs = crossing_pairs(pos_b, neg_b); pairs != 0; pairs &= pairs - 1) {
+    const int at = __builtin_ctz(pairs), ea = at >> 2, j = at & 3;
+    const int p = kEdge[ea][0], q = kEdge[ea][1];
+    const int k = kFace[j][0], l = kFace[j][1], m = kFace[j][2];
+    // edge z of face j: b's edge eb[z], where the plane of b's face opposite[z] meets face j
+    const int eb[3] = {kEdgeIndex[k][l], kEdgeIndex[l][m], kEdgeIndex[k][m]}, opposite[3] = {m, k, l};
+    int zeros = 0, zero = -1;
+    bool inside = true;
+    for (int z = 0; z < 3 && inside; ++z) {
+      const int o = opposite[z];
+      const int side = crossing_side(side_in(pos_b[o], neg_b[o], p), side_in(pos_b[o], neg_b[o], q),
+                                     side_in(pos_b[j], neg_b[j], p), kPermutationSign[j][o],
+                                     [&] { return orientation(ea, eb[z]); });
+      if (side < 0) inside = false;
+      if (side == 0) ++zeros, zero = z;
+    }
+    if (!inside) continue;
+    if (zeros == 0) {
+      add(crossing(a[p], a[q], b[k], b[l], b[m]), faces_at_edge(p, q) | 1u << (4 + j));
+    } else if (zeros == 1) {
+      const unsigned long long bit = 1ull << (6 * ea + eb[zero]);
+      if (edge_pairs & bit) continue;
+      edge_pairs |= bit;
+      const int x = kEdge[eb[zero]][0], y = kEdge[eb[zero]][1];
+      add(crossing(a[p], a[q], b[x], b[y]), faces_at_edge(p, q) | faces_at_edge(x, y) << 4);
+    }
+  }
+  // b's edges through a's open faces (the edge-edge crossings were all found from a's side: an edge of a
+  // crossing an open edge of b strictly crosses the plane of a face of b at that edge).
+  for (unsigned pairs = crossing_pairs(pos_a, neg_a); pairs != 0; pairs &= pairs - 1) {
+    const int at = __builtin_ctz(pairs), eb = at >> 2, i = at & 3;
+    const int x = kEdge[eb][0], y = kEdge[eb][1];
+    const int k = kFace[i][0], l = kFace[i][1], m = kFace[i][2];
+    const int ea[3] = {kEdgeIndex[k][l], kEdgeIndex[l][m], kEdgeIndex[k][m]}, opposite[3] = {m, k, l};
+    bool inside = true;
+    for (int z = 0; z < 3 && inside; ++z) {
+      const int o = opposite[z];
+      inside = crossing_side(side_in(pos_a[o], neg_a[o], x), side_in(pos_a[o], neg_a[o], y),
+                             side_in(pos_a[i], neg_a[i], x), kPermutationSign[i][o],
+                             [&] { return orientation(ea[z], eb); }) > 0;
+    }
+    if (inside) add(crossing(b[x], b[y], a[k], a[l], a[m]), faces_at_edge(x, y) << 4 | 1u << i);
+  }
+  if (n < 4) return Piece3{};  // the interiors do not meet (touching along a segment or at a point)
+  // A face plane of b that is a face plane of a too (same side: opposite sides separate) keeps a's bit.
+  for (int i = 0; i < 4; ++i) {
+    const unsigned on_plane = 0xFu & ~(pos_a[i] | neg_a[i]);  // b's vertices on the plane of a's face i
+    const unsigned one_cleared = on_plane & (on_plane - 1);  // its lowest bit cleared
+    if ((one_cleared & (one_cleared - 1)) == 0) continue;    // fewer than 3 of b's vertices on it
+    for (int j = 0; j < 4; ++j)
+      if ((on_plane | 1u << j) == 0xFu)  // b's face j (its vertices but j) lies in that plane
+        for (int k = 0; k < n; ++k) c[k].planes &= ~(1u << (4 + j));
+  }
+  return assemble(c, n, normal);
+}
+
+}  // namespace dlmfsi

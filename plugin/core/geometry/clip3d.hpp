@@ -1,0 +1,124 @@
+// The piece shared by two tetrahedra: a convex polyhedron of at most 12 vertices and 8 faces.
+#pragma once
+#include <cmath>
+
+#include "point3.hpp"
+#include "geometry/predicates3d.hpp"
+
+namespace dlmfsi {
+
+struct Piece3 {
+  static constexpr int kMaxVertices = 16, kMaxFaces = 8, kMaxFaceIndices = 64;
+  Point3 v[kMaxVertices];
+  int n = 0;  // number of vertices; 0 when the interiors do not meet
+  // Face f is the cycle of vertex indices face_index[face_start[f] .. face_start[f + 1]), in order around
+  // the face (either direction). Vertex 0 is the lexicographically smallest vertex.
+  unsigned char face_index[kMaxFaceIndices];
+  int face_start[kMaxFaces + 1] = {0};
+  int faces = 0;
+  // Which planes each vertex lies on: bits 0-3 the faces of the first tetrahedron (face i opposite its
+  // vertex i), bits 4-7 those of the second (a plane shared by both keeps the first one's bit only).
+  unsigned char planes[kMaxVertices];
+  // True when every face was ordered from the exact plane incidences (always so for finite input: the
+  // floating-point ordering that replaces it otherwise is a guard, counted by the tests).
+  bool exact = true;
+
+  // The pulling triangulation from the apex (apex()): f(apex, p, q, r) for each triangle (p, q, r) of the
+  // fans of the faces that do not contain the apex. The tetrahedra tile the piece; they are not oriented.
+  template <class F>
+  void for_each_tetrahedron(F&& f) const {
+    for_each_tetrahedron_index([&](int i, int j, int k, int l) { f(v[i], v[j], v[k], v[l]); });
+  }
+  // The same tetrahedra as vertex indices (the first is always the apex).
+  template <class F>
+  void for_each_tetrahedron_index(F&& f) const {
+    for_each_tetrahedron_from(apex(), f);
+  }
+  // The pulling triangulation from vertex a, as vertex indices (a caller that has apex() already).
+  template <class F>
+  void for_each_tetrahedron_from(int a, F&& f) const {
+    for (int k = 0; k < faces; ++k) {
+      const int s = face_start[k], e = face_start[k + 1];
+      bool has_apex = false;
+      for (int i = s; i < e; ++i) has_apex = has_apex || face_index[i] == a;
+      if (has_apex) continue;
+      for (int i = s + 1; i + 1 < e; ++i) f(a, face_index[s], face_index[i], face_index[i + 1]);
+    }
+  }
+  // The vertex whose pulling triangulation has the fewest tetrahedra: sum over the faces f without it of
+  // (|f| - 2), i.e. 2 n - 4 (Euler) less sum over the faces f with it of (|f| - 2), maximized; the first such
+  // vertex.
+  int apex() const {
+    int score[kMaxVertices] = {0};
+    for (int k = 0; k < faces; ++k) {
+      const int s = face_start[k], e = face_start[k + 1];
+      for (int i = s; i < e; ++i) score[face_index[i]] += e - s - 2;
+    }
+    int best = 0;
+    for (int i = 1; i < n; ++i)
+      if (score[i] > score[best]) best = i;
+    return best;
+  }
+  // Sum of the pulling triangulation's |volumes| (each tetrahedron's is >= 0 exactly; round-off only).
+  double volume() const {
+    double s = 0;
+    for_each_tetrahedron([&s](Point3 o, Point3 p, Point3 q, Point3 r) { s += std::fabs(volume6(o, p, q, r)); });
+    return s / 6;
+  }
+};
+
+// The four face planes of a positively oriented tetrahedron t, each oriented so that side(j, x) > 0 on t's
+// side of face j (opposite t[j]): side(j, x) = orient3d of t with t[j] replaced by x, exactly. Formed once
+// for a tetrahedron clipped against many others.
+struct TetFaces {
+  PlaneSide face[4];
+  void set(const Point3 t[4]) {
+    // orient3d(t with t[j] <- x) = (-1)^(3 - j) orient3d(t_k, t_l, t_m, x) for the others k < l < m
+    face[0].set(t[1], t[3], t[2]);
+    face[1].set(t[0], t[2], t[3]);
+    face[2].set(t[0], t[3], t[1]);
+    face[3].set(t[0], t[1], t[2]);
+  }
+  int side(int j, Point3 x) const { return face[j].sign(x); }
+};
+
+// Intersection of the closed, positively oriented tetrahedra a and b (orient3d(t[0], t[1], t[2], t[3]) > 0).
+//
+// Every decision is an exact orient3d sign on the input coordinates (predicates3d.hpp):
+//  - the interiors meet iff no face plane of a or b has the other tetrahedron on its closed outer side and
+//    at least 4 of the candidate vertices below exist (when no face plane separates them, tetrahedra whose
+//    interiors do not meet share at most a segment, 2 vertices);
+//  - the vertices are: the vertices of a in closed b; those of b in closed a (one copy of a vertex shared by
+//    both); the crossings of an edge of one with the open face of the other (edge endpoints strictly on
+//    either side of the face's plane, the edge's line strictly inside the face's three edges); the proper
+//    crossings of an edge of a with a coplanar edge of b. Each is a vertex of the piece, found once, and
+//    with it the set of face planes it lies on (from the signs);
+//  - two vertices of a face are neighbours around it iff they share another plane (the line where the two
+//    planes meet holds one edge of the piece), so each face's cycle follows from the plane sets alone;
+//  - a crossing point is computed from its segment and plane (or its two segments) in a canonical order
+//    (each point set sorted lexicographically), so every tetrahedron having that edge and that face (or
+//    those edges) gets bit-identical coordinates: neighbouring tetrahedra sharing a face agree.
+// Degenerate cases handled by name: shared face (either orientation), shared edge, shared vertex, vertex on
+// a face, vertex on an edge, edge through an edge, coplanar faces overlapping, one tetrahedron inside the
+// other, identical tetrahedra. Nothing is dropped: there is no size threshold.
+Piece3 clip(const Point3 a[4], const Point3 b[4]);
+
+// The same, also telling across which faces of b the tetrahedron a reaches: bit j of beyond is set when a
+// vertex of a lies strictly outside the plane of b's face j (opposite b[j]). Only there can a's interior
+// meet a tetrahedron on the other side of that face. Set whenever the piece is not empty. When a lies in
+// closed b (beyond == 0) the piece is a itself, and when b lies in closed a it is b.
+Piece3 clip(const Point3 a[4], const Point3 b[4], unsigned& beyond);
+
+// The same with a's face planes formed by the caller (a = the mapped solid tetrahedron, clipped against
+// every fluid tetrahedron it meets).
+Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsigned& beyond);
+
+// The point where segment [p, q] crosses the plane through x, y, z (it must cross it), canonical in the
+// order of p, q and of x, y, z.
+Point3 crossing(Point3 p, Point3 q, Point3 x, Point3 y, Point3 z);
+
+// The point where the coplanar segments [p, q] and [r, s] cross (properly), canonical in the order of the
+// four arguments and of the two segments.
+Point3 crossing(Point3 p, Point3 q, Point3 r, Point3 s);
+
+}  // namespace dlmfsi

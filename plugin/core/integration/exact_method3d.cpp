@@ -1,0 +1,110 @@
+#include "integration/exact_method3d.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "coupling/coupling3d.hpp"
+#include "errors.hpp"
+#include "geometry/predicates3d.hpp"
+#include "geometry/red_refinement3d.hpp"
+#include "map/split3d.hpp"
+
+namespace dlmfsi {
+
+namespace {
+using Tet = std::array<Point3, 4>;
+}  // namespace
+
+ExactMethod3::ExactMethod3(const FluidSide3& fluid, FluidSearch3& search, int product_degree, int qforder,
+                           int subdivide, std::unique_ptr<PieceIntegrator3> general,
+                           std::unique_ptr<PieceIntegrator3> affine, CouplingReport3& counts)
+    : fluid_(fluid), search_(search), product_degree_(product_degree), qforder_(qforder), subdivide_(subdivide),
+      general_(std::move(general)), affine_(std::move(affine)), counts_(counts) {}
+
+double ExactMethod3::integrate(const MappedTet& mt, LocalBlock& block) {
+  // Curved faces: the reference tetrahedron refined, corners mapped by the true map; on each
+  // sub-tetrahedron the jacobian varies 2^level times less.
+  const int level = mt.planar ? 0 : (subdivide_ >= 0 ? subdivide_ : 2);
+  const ClippedImage3 image{mt, rule_degree(mt, std::ldexp(1.0, -level), !mt.planar)};
+  if (mt.affine) return clip(image, mt.image, block);
+  if (mt.planar) return clip_or_split(image, reference_subdivision(0)[0].data(), mt.image, block);
+  double outside = 0;
+  for (const Tet& sub : reference_subdivision(level)) {
+    Point3 img[4];
+    for (int i = 0; i < 4; ++i) {
+      img[i] = mt.at(sub[i]).x;
+      if (!std::isfinite(img[i].x) || !std::isfinite(img[i].y) || !std::isfinite(img[i].z))
+        throw Error("the map is NaN or Inf inside solid tetrahedron " + std::to_string(mt.k));
+    }
+    const ClippedImage3 part{mt, image.degree, sub.data(), img};
+    outside += clip_or_split(part, sub.data(), img, block);
+  }
+  return outside;
+}
+
+double ExactMethod3::clip_or_split(const ClippedImage3& image, const Point3 xi[4], const Point3 y[4],
+                                   LocalBlock& block) {
+  const MappedTet& mt = image.tetrahedron;
+  if (qforder_ >= 0 || nonlinearity_on(mt, xi, y) <= kSplitNonlinearity3) return clip(image, y, block);
+  if (!split_part3(mt, xi, y, kSplitNonlinearity3, kMaxPartDepth3, kMaxParts3, parts_)) {
+    char msg[300];
+    std::snprintf(msg, sizeof msg,
+                  "the map nearly folds solid tetrahedron %d: its nonlinearity stays above %.3g on parts of 2^-%d of "
+                  "its size, or on more than %d parts",
+                  mt.k, kSplitNonlinearity3, kMaxPartDepth3, kMaxParts3);
+    throw Error(msg);
+  }
+  ++counts_.split;
+  counts_.parts += static_cast<long>(parts_.size());
+  // Each part gets the rule of its own nonlinearity (a rule of 2^-level of the whole's on a sub-tetrahedron
+  // of a curved image: the same scale).
+  double outside = 0;
+  for (const MapPart3& part : parts_) {
+    const ClippedImage3 piece{mt, part_rule_degree(part.nonlinearity, !mt.planar), part.xi, part.y};
+    outside += clip(piece, part.y, block);
+  }
+  return outside;
+}
+
+// Where the map is not affine, the integrand in fluid coordinates, f(X^-1(y)) / det grad X, is smooth but
+// not polynomial; its error under a rule of degree p + q falls like (d/3)^q, d the map's nonlinearity (how
+// far grad X strays from the affine jacobian, map3d.hpp; measured on P1b maps, d = 0.05 to 0.4, where
+// q = 14 gives 1e-12 at d = 0.37). So q = 12 / -log10(d/3), at most 26 (d <= 1: images of larger d are split,
+// clip_or_split), for an error about 1e-12 on planar images (a bubble map of d = 0.9 / 0.99: 3e-13 / 2e-13
+// with q = 23 / 26, against 5e-11 / 1.6e-10 with 16); on curved images, whose error is the band between the
+// curved boundary and the facets (1e-3 to 1e-6), 1e-8 (qforder overrides).
+int ExactMethod3::rule_degree(const MappedTet& mt, double scale, bool curved) {
+  if (mt.affine) return product_degree_;
+  if (qforder_ >= 0) return qforder_;
+  return part_rule_degree(scale * mt.nonlinearity, curved);
+}
+
+int ExactMethod3::part_rule_degree(double nonlinearity, bool curved) {
+  const double d = std::max(nonlinearity, 1e-300) / 3;
+  const double digits = curved ? 8 : 12;
+  const int q = d >= 0.5 ? kMaxQ3 : std::min(kMaxQ3, std::max(2, static_cast<int>(std::ceil(digits / -std::log10(d)))));
+  const int degree = std::min(40, product_degree_ + q);
+  counts_.curved_rule_degree = std::max(counts_.curved_rule_degree, degree);
+  return degree;
+}
+
+double ExactMethod3::clip(const ClippedImage3& image, const Point3 img[4], LocalBlock& block) {
+  const int o = orient3d(img[0], img[1], img[2], img[3]);
+  if (o <= 0)
+    throw Error("the map folds solid tetrahedron " + std::to_string(image.tetrahedron.k) +
+                " (a sub-tetrahedron's image is " + (o == 0 ? "flat)" : "negatively oriented)"));
+  PieceIntegrator3& integrator = affine_ && image.tetrahedron.affine ? *affine_ : *general_;
+  double covered = 0;
+  search_.for_each_piece(img, hint_, [&](int kf, const Piece3& piece) {
+    ++counts_.pieces;
+    block.enter_fluid_element(fluid_.dofs(kf));
+    covered += integrator.integrate(image, kf, piece, block);
+  });
+  return volume6(img[0], img[1], img[2], img[3]) / 6 - covered;
+}
+
+}  // namespace dlmfsi

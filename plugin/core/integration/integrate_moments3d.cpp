@@ -1,0 +1,119 @@
+#include "integration/integrate_moments3d.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "coupling/coupling3d.hpp"
+
+namespace dlmfsi {
+
+namespace {
+
+// Volume, centroid and central second moments M = int_P (y - c)(y - c)^T dy of a piece, from its
+// tetrahedra: with vertices 0, a, b, c relative to the piece's apex, a tetrahedron of volume V has
+// int y = V (a + b + c) / 4 and int y y^T = V / 20 (a a^T + b b^T + c c^T + s s^T), s = a + b + c.
+// The vectors are taken in units of 2^e, about the piece's size (scale: 2^e, scaling exact), so that the
+// first and second moments are V times numbers near 1 (in the caller's units they would be V h and V h^2:
+// outside the doubles for pieces beyond about 1e-60..1e60 in size); m holds M / 2^(2 e).
+struct Moments {
+  double volume = 0;
+  Point3 centroid;
+  double scale = 1;
+  double m[3][3] = {};
+};
+
+Moments moments(const Piece3& piece) {
+  Moments out;
+  const int apex = piece.apex();  // the triangulation's: every tetrahedron's first corner
+  const Point3 o = piece.v[apex];
+  double size = 0;
+  for (int k = 0; k < piece.n; ++k) {
+    const Point3 d = piece.v[k] - o;
+    size = std::max({size, std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)});
+  }
+  int e = 0;
+  if (size > 0 && std::isfinite(size)) std::frexp(size, &e);
+  out.scale = std::ldexp(1.0, e);
+  const double shrink = std::ldexp(1.0, -e);
+  double first[3] = {0, 0, 0}, second[3][3] = {};
+  piece.for_each_tetrahedron_from(apex, [&](int, int ip, int iq, int ir) {
+    const Point3 a = piece.v[ip] - o, b = piece.v[iq] - o, c = piece.v[ir] - o;
+    const double v = std::fabs(dot(a, cross(b, c))) / 6;
+    out.volume += v;
+    const Point3 as = shrink * a, bs = shrink * b, cs = shrink * c, s = as + bs + cs;
+    const double sv[3] = {s.x, s.y, s.z}, av[3] = {as.x, as.y, as.z}, bv[3] = {bs.x, bs.y, bs.z},
+                 cv[3] = {cs.x, cs.y, cs.z};
+    for (int i = 0; i < 3; ++i) {
+      first[i] += v * sv[i] / 4;
+      for (int j = 0; j < 3; ++j) second[i][j] += v / 20 * (av[i] * av[j] + bv[i] * bv[j] + cv[i] * cv[j] + sv[i] * sv[j]);
+    }
+  });
+  if (!(out.volume > 0)) return out;
+  const double c[3] = {first[0] / out.volume, first[1] / out.volume, first[2] / out.volume};
+  out.centroid = o + out.scale * Point3{c[0], c[1], c[2]};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) out.m[i][j] = second[i][j] - out.volume * c[i] * c[j];
+  return out;
+}
+
+}  // namespace
+
+bool MomentIntegrator3::applies(const Integrand3& integrand) {
+  const PolynomialBasis3 &fluid = integrand.fluid, &multiplier = integrand.multiplier;
+  return fluid.fitted() && multiplier.fitted() && fluid.degree() <= 1 && multiplier.degree() <= 1 &&
+         (integrand.chain || integrand.c1 == 0) && static_cast<int>(fluid.functions().size()) <= kMaxFunctions &&
+         static_cast<int>(multiplier.functions().size()) <= kMaxFunctions;
+}
+
+MomentIntegrator3::MomentIntegrator3(const Integrand3& integrand, CouplingReport3& counts)
+    : integrand_(integrand), counts_(counts), fluid_functions_(static_cast<int>(integrand.fluid.functions().size())),
+      multiplier_functions_(static_cast<int>(integrand.multiplier.functions().size())) {}
+
+double MomentIntegrator3::integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) {
+  const MappedTet& mt = image.tetrahedron;
+  const Moments mo = moments(piece);
+  counts_.points += 1;
+  if (!(mo.volume > 0)) return mo.volume;
+  double fv[kMaxFunctions], fg[3 * kMaxFunctions], sv[kMaxFunctions], sg[3 * kMaxFunctions];
+  integrand_.fluid.evaluate_affine(kf, integrand_.fluid.to_reference(kf, mo.centroid), fv, fg);
+  integrand_.multiplier.evaluate_affine(mt.k, mt.affine_reference(mo.centroid), sv, sg);
+  const double(&j)[3][3] = mt.affine_value.jac;
+  const double det = mt.affine_det, mass = integrand_.c2 / det, stiff = integrand_.c1 * mo.volume / det;
+  // per multiplier function: its gradient in y, J^-T grad_s psi (J^-T = cofactor matrix / det), times 2^e
+  double sy[3 * kMaxFunctions];
+  const double cof[3][3] = {{j[1][1] * j[2][2] - j[1][2] * j[2][1], j[1][2] * j[2][0] - j[1][0] * j[2][2], j[1][0] * j[2][1] - j[1][1] * j[2][0]},
+                            {j[0][2] * j[2][1] - j[0][1] * j[2][2], j[0][0] * j[2][2] - j[0][2] * j[2][0], j[0][1] * j[2][0] - j[0][0] * j[2][1]},
+                            {j[0][1] * j[1][2] - j[0][2] * j[1][1], j[0][2] * j[1][0] - j[0][0] * j[1][2], j[0][0] * j[1][1] - j[0][1] * j[1][0]}};
+  for (int f = 0; f < multiplier_functions_; ++f)
+    for (int a = 0; a < 3; ++a)  // (J^-T g)_a = sum_b (J^-1)_ba g_b, J^-1 = cof^T / det
+      sy[3 * f + a] = (cof[a][0] * sg[3 * f] + cof[a][1] * sg[3 * f + 1] + cof[a][2] * sg[3 * f + 2]) / det * mo.scale;
+  // per fluid function: c2/det (V phi(c), M grad phi / 2^e) and c1 V / det J^T grad phi (the 2^e of the moments'
+  // units cancel in the products with sy, each factor a double at any size)
+  double fa[kMaxFunctions], fm[3 * kMaxFunctions], fc[3 * kMaxFunctions];
+  for (int f = 0; f < fluid_functions_; ++f) {
+    const double* g = fg + 3 * f;
+    fa[f] = mass * mo.volume * fv[f];
+    for (int a = 0; a < 3; ++a) {
+      fm[3 * f + a] = mass * (mo.m[a][0] * g[0] + mo.m[a][1] * g[1] + mo.m[a][2] * g[2]) * mo.scale;
+      fc[3 * f + a] = stiff * (g[0] * j[0][a] + g[1] * j[1][a] + g[2] * j[2][a]);
+    }
+  }
+  const bool gradients = integrand_.c1 != 0;
+  const ComponentPairs& pairs = integrand_.pairs;
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    const ComponentPair& pair = pairs[p];
+    for (size_t a = 0; a < pair.fluid_functions.size(); ++a) {
+      const int f = pair.fluid_functions[a];
+      double* col = block.column(pair.fluid_first + static_cast<int>(a)) + pair.solid_first;
+      for (size_t b = 0; b < pair.solid_functions.size(); ++b) {
+        const int g = pair.solid_functions[b];
+        double sum = fa[f] * sv[g] + fm[3 * f] * sy[3 * g] + fm[3 * f + 1] * sy[3 * g + 1] + fm[3 * f + 2] * sy[3 * g + 2];
+        if (gradients) sum += fc[3 * f] * sg[3 * g] + fc[3 * f + 1] * sg[3 * g + 1] + fc[3 * f + 2] * sg[3 * g + 2];
+        col[b] += sum;
+      }
+    }
+  }
+  return mo.volume;
+}
+
+}  // namespace dlmfsi

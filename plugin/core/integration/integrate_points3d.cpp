@@ -1,0 +1,194 @@
+#include "integration/integrate_points3d.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "coupling/coupling3d.hpp"
+#include "errors.hpp"
+#include "geometry/predicates3d.hpp"
+#include "map/pull_back3d.hpp"
+#include "fe/rules.hpp"
+#include "fe/weighted_sum.hpp"
+
+namespace dlmfsi {
+
+PointIntegrator3::PointIntegrator3(const Integrand3& integrand, CouplingReport3& counts)
+    : integrand_(integrand), counts_(counts), fluid_functions_(static_cast<int>(integrand.fluid.functions().size())),
+      gradients_(integrand.c1 != 0), listing_(integrand.c1 != 0 && !integrand.chain),
+      constant_multiplier_gradients_(gradients_ && !listing_ && integrand.multiplier.fitted() &&
+                                     integrand.multiplier.degree() <= 1),
+      values_(integrand) {}
+
+double PointIntegrator3::integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) {
+  const double volume = gather(image, kf, piece);
+  add_gathered(image.tetrahedron, kf, block);
+  return volume;
+}
+
+void PointIntegrator3::add_points(const MappedTet& mt, int kf, const PointData* points, int n, LocalBlock& block) {
+  clear_points();
+  for (int q = 0; q < n; ++q) {
+    eta_.push_back(points[q].eta);
+    xi_.push_back(points[q].xi);
+    weight_.push_back(points[q].weight);
+    if (!mt.affine) jac_.push_back(points[q].jac);
+  }
+  add_gathered(mt, kf, block);
+}
+
+void PointIntegrator3::clear_points() {
+  eta_.clear();
+  xi_.clear();
+  weight_.clear();
+  jac_.clear();
+}
+
+void PointIntegrator3::add_gathered(const MappedTet& mt, int kf, LocalBlock& block) {
+  const int n = static_cast<int>(eta_.size());
+  if (n == 0) return;
+  counts_.points += n;
+  if (deferred_chain(mt)) {
+    values_.evaluate_fluid_gradient_sums(kf, eta_.data(), weight_.data(), mt.k, xi_.data(), n);
+  } else {
+    values_.evaluate(kf, eta_.data(), mt.k, xi_.data(), n);
+  }
+  // Pairs that repeat an earlier pair's functions (on elements of the shared fits) copy its sums.
+  const PolynomialBasis3 &fluid = integrand_.fluid, &multiplier = integrand_.multiplier;
+  const bool twins = !listing_ && fluid.fitted() && multiplier.fitted() && fluid.shared(kf) && multiplier.shared(mt.k);
+  weigh(mt, n, twins ? integrand_.pairs.fluid_read_by_sources() : integrand_.pairs.fluid_read());
+  add_pairs(mt, n, twins, block);
+  if (listing_) add_listing(mt, n, block);
+}
+
+double PointIntegrator3::gather(const ClippedImage3& image, int kf, const Piece3& piece) {
+  const MappedTet& mt = image.tetrahedron;
+  const auto& rule = tetrahedron_rule(image.degree);
+  Point3 xi_corner[Piece3::kMaxVertices];
+  MapValue3 mv;
+  for (int v = 0; v < piece.n; ++v)
+    xi_corner[v] = mt.affine ? mt.affine_reference(piece.v[v]) : pull_back(mt, piece.v[v], image.guess(piece.v[v]), mv);
+  clear_points();
+  double volume = 0;
+  piece.for_each_tetrahedron_index([&](int i0, int i1, int i2, int i3) {
+    const Point3 tet[4] = {piece.v[i0], piece.v[i1], piece.v[i2], piece.v[i3]};
+    const double vol = std::fabs(volume6(tet[0], tet[1], tet[2], tet[3])) / 6;
+    volume += vol;
+    const Point3 xt[4] = {xi_corner[i0], xi_corner[i1], xi_corner[i2], xi_corner[i3]};
+    for (const RulePoint3& rp : rule) {
+      const Point3 y = from_reference(tet, rp.xi);
+      Point3 xi = from_reference(xt, rp.xi);
+      double det = mt.affine_det;
+      if (!mt.affine) {
+        xi = pull_back(mt, y, xi, mv);
+        det = det3(mv.jac);
+        if (!(det > 0)) throw Error("the map folds solid tetrahedron " + std::to_string(mt.k));
+        std::array<double, 9>& jac = jac_.emplace_back();
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b) jac[3 * a + b] = mv.jac[a][b];
+      }
+      eta_.push_back(integrand_.fluid.to_reference(kf, y));
+      xi_.push_back(xi);
+      weight_.push_back(vol * rp.weight / det);
+    }
+  });
+  return volume;
+}
+
+void PointIntegrator3::weigh(const MappedTet& mt, int n, const std::vector<char>& read) {
+  const double(&aj)[3][3] = mt.affine_value.jac;
+  const bool deferred = deferred_chain(mt), gradients = gradients_ && !listing_;
+  if (constant_multiplier_gradients_) gradient_sums_.resize(3 * static_cast<size_t>(fluid_functions_));
+  for (int f = 0; f < fluid_functions_; ++f) {
+    if (!read[f]) continue;
+    double* v = values_.fluid_value(f);
+    for (int q = 0; q < n; ++q) v[q] *= integrand_.c2 * weight_[q];
+    if (!gradients) continue;
+    double* sums = constant_multiplier_gradients_ ? &gradient_sums_[3 * static_cast<size_t>(f)] : nullptr;
+    if (deferred) {
+      // c1 J^T sum_q w_q grad phi(q), J = dX/ds constant, from the evaluation's weighted sums
+      const double* d = values_.fluid_gradient_sum(f);
+      for (int b = 0; b < 3; ++b) sums[b] = integrand_.c1 * (d[0] * aj[0][b] + d[1] * aj[1][b] + d[2] * aj[2][b]);
+      continue;
+    }
+    double* const gradient = values_.fluid_gradient(f);
+    double* g[3] = {gradient, gradient + n, gradient + 2 * n};
+    double s[3] = {0, 0, 0};
+    for (int q = 0; q < n; ++q) {
+      const double w = weight_[q];
+      const double* jq = mt.affine ? &aj[0][0] : jac_[q].data();
+      const double d0 = g[0][q], d1 = g[1][q], d2 = g[2][q];
+      for (int b = 0; b < 3; ++b) {
+        const double gb = integrand_.c1 * w * (d0 * jq[b] + d1 * jq[3 + b] + d2 * jq[6 + b]);
+        if (sums) s[b] += gb;
+        else g[b][q] = gb;
+      }
+    }
+    if (sums) std::copy(s, s + 3, sums);
+  }
+}
+
+void PointIntegrator3::add_pairs(const MappedTet& mt, int n, bool twins, LocalBlock& block) {
+  const ComponentPairs& pairs = integrand_.pairs;
+  // The chain rule's gradient term: grad psi . g summed along the points (g: the weighted chain-rule
+  // gradients weigh formed); with grad psi constant on the tetrahedron (a multiplier fitted at degree 0 or
+  // 1), grad psi . (sum_q g_q), the sums weigh formed.
+  const bool deferred = deferred_chain(mt);
+  auto gradient_term = [&](int f, const double* gphi, const double* gpsi) {
+    if (!constant_multiplier_gradients_) {
+      double sum = 0;
+      for (int q = 0; q < n; ++q)
+        sum += gpsi[q] * gphi[q] + gpsi[n + q] * gphi[n + q] + gpsi[2 * n + q] * gphi[2 * n + q];
+      return sum;
+    }
+    const double* g = &gradient_sums_[3 * static_cast<size_t>(f)];
+    const int stride = deferred ? 1 : n;  // deferred: the multiplier's gradients at one point
+    return gpsi[0] * g[0] + gpsi[stride] * g[1] + gpsi[2 * stride] * g[2];
+  };
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    const ComponentPair& pair = pairs[p];
+    if (twins && pair.source >= 0) continue;  // added with its source
+    const std::vector<int>&fi = pair.fluid_functions, &si = pair.solid_functions;
+    for (size_t a = 0; a < fi.size(); ++a) {
+      const double* phi = values_.fluid_value(fi[a]);
+      // with constant multiplier gradients only the sums are read (deferred: the gradients are not formed)
+      const double* gphi = constant_multiplier_gradients_ ? nullptr : values_.fluid_gradient(fi[a]);
+      double* col = block.column(pair.fluid_first + static_cast<int>(a)) + pair.solid_first;
+      for (size_t b = 0; b < si.size(); ++b) {
+        const double* psi = values_.multiplier_value(si[b]);
+        const double* gpsi =
+            deferred ? values_.multiplier_constant_gradient(si[b]) : values_.multiplier_gradient(si[b]);
+        double sum = weighted_sum(psi, phi, n);
+        if (gradients_ && !listing_) sum += gradient_term(fi[a], gphi, gpsi);
+        col[b] += sum;
+        if (twins)
+          for (int copy : pair.copies) block.column(pairs[copy].fluid_first + static_cast<int>(a))[pairs[copy].solid_first + static_cast<int>(b)] += sum;
+      }
+    }
+  }
+}
+
+// The printed listings' reversed product, Grad(X,Y,Z) * Grad(u,v,w): pair index = vector component.
+void PointIntegrator3::add_listing(const MappedTet& mt, int n, LocalBlock& block) {
+  const double(&aj)[3][3] = mt.affine_value.jac;
+  const ComponentPairs& pairs = integrand_.pairs;
+  for (int a = 0; a < 3; ++a)
+    for (int c = 0; c < 3; ++c)
+      for (size_t ia = 0; ia < pairs[c].fluid_functions.size(); ++ia) {
+        const double* gphi = values_.fluid_gradient(pairs[c].fluid_functions[ia]);
+        // the column of pair c's ia-th fluid dof, from pair a's first multiplier dof on
+        double* col = block.column(pairs[c].fluid_first + static_cast<int>(ia)) + pairs[a].solid_first;
+        for (size_t ib = 0; ib < pairs[a].solid_functions.size(); ++ib) {
+          const double* gpsi = values_.multiplier_gradient(pairs[a].solid_functions[ib]);
+          double sum = 0;
+          for (int q = 0; q < n; ++q) {
+            const double jac = mt.affine ? aj[a][c] : jac_[q][3 * a + c];
+            sum += integrand_.c1 * weight_[q] * jac *
+                   (gpsi[q] * gphi[q] + gpsi[n + q] * gphi[n + q] + gpsi[2 * n + q] * gphi[2 * n + q]);
+          }
+          col[ib] += sum;
+        }
+      }
+}
+
+}  // namespace dlmfsi

@@ -1,0 +1,70 @@
+// The point-by-point piece integrator for tetrahedra: any basis (fitted, or evaluated through the element
+// itself) and either gradient product. A rule on each tetrahedron of the piece: the points with their
+// reference coordinates in the fluid element (eta, affine in y) and in the solid element (xi: the affine
+// pull-back, or Newton's from the interpolation of the piece's corners' pull-backs), both bases evaluated
+// on all points at once (point_values3d.hpp), then
+//   block_ij += sum_q w_q [c2 psi_i phi_j + c1 grad_s psi_i . (J^T grad phi_j)],  w_q = volume weight / det J,
+// or with the listings' reversed product (three pairs, the pair index being the vector component)
+//   grad psi : G = sum_{a,b} d_b psi^(a) sum_c dX_a/ds_c d_b phi^(c).
+// On elements of the shared fits, a pair that repeats an earlier pair's functions (ComponentPairs) copies
+// its sums.
+#pragma once
+#include <array>
+#include <vector>
+
+#include "integration/integrator3d.hpp"
+#include "integration/point_values3d.hpp"
+
+namespace dlmfsi {
+
+class PointIntegrator3 : public PieceIntegrator3 {
+ public:
+  PointIntegrator3(const Integrand3& integrand, CouplingReport3& counts);
+  double integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) override;
+
+  // A point of the solid tetrahedron whose image lies in fluid tetrahedron kf: reference coordinates in kf
+  // (eta) and in the solid tetrahedron (xi), its weight in solid measure (ds; a piece's points carry
+  // dy / det dX/ds, the same), and dX/ds there where the map is not affine.
+  struct PointData {
+    Point3 eta, xi;
+    double weight;
+    std::array<double, 9> jac;
+  };
+  // Adds sum_q weight_q f_ij(point q) over points all in fluid tetrahedron kf (entered in the block by the
+  // caller): the quadrature method's way in (quadrature_method3d.hpp).
+  void add_points(const MappedTet& mt, int kf, const PointData* points, int n, LocalBlock& block);
+
+ private:
+  // Evaluates both bases on the gathered points (in kf) and adds the sums to the block.
+  void add_gathered(const MappedTet& mt, int kf, LocalBlock& block);
+  // The rule's points on the piece's tetrahedra, into eta_, xi_, weight_ (and jac_); returns the piece's volume.
+  double gather(const ClippedImage3& image, int kf, const Piece3& piece);
+  // Folds the weights and the chain rule's jacobian into the fluid functions read (with constant multiplier
+  // gradients, into their gradients' sums instead).
+  void weigh(const MappedTet& mt, int n, const std::vector<char>& read);
+  void add_pairs(const MappedTet& mt, int n, bool twins, LocalBlock& block);
+  // Constant multiplier gradients, an affine map and a fitted fluid basis: the fluid gradients are only
+  // needed as their weighted sums along the points (PointValues3::evaluate_fluid_gradient_sums), to which
+  // weigh applies the constant jacobian.
+  bool deferred_chain(const MappedTet& mt) const {
+    return constant_multiplier_gradients_ && mt.affine && integrand_.fluid.fitted();
+  }
+  void add_listing(const MappedTet& mt, int n, LocalBlock& block);
+
+  const Integrand3& integrand_;
+  CouplingReport3& counts_;
+  int fluid_functions_;
+  bool gradients_, listing_;  // c1 != 0; and the listings' product
+  // The chain rule with a multiplier fitted at degree 0 or 1 (gradients constant on a tetrahedron): weigh
+  // sums each fluid function's weighted chain-rule gradients along the points (gradient_sums_: x, y, z).
+  bool constant_multiplier_gradients_;
+  std::vector<double> gradient_sums_;
+  // The gathered points, as PointData's fields (jac_ only where the map is not affine).
+  std::vector<Point3> eta_, xi_;
+  std::vector<double> weight_;
+  std::vector<std::array<double, 9>> jac_;
+  void clear_points();
+  PointValues3 values_;
+};
+
+}  // namespace dlmfsi

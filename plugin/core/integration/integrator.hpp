@@ -1,0 +1,112 @@
+// How the coupling's integrand is integrated over one solid triangle. The integrand, for multiplier function
+// psi_i and fluid function phi_j of a coupled component pair, is
+//   f_ij(s) = c2 psi_i(s) . phi_j(X(s)) + c1 grad_s psi_i : grad_s (phi_j o X)(s),
+// with the chain rule grad_s (phi o X) = (grad phi)(X) dX/ds, or the printed listings' reversed product.
+//
+// A TriangleIntegrator adds int_T f_ij ds over a solid triangle T to the triangle's LocalBlock: the exact
+// method (exact_method.hpp) clips T's image against the fluid and hands each piece to a PieceIntegrator;
+// the quadrature method (quadrature_method.hpp) applies a composite rule on T. The piece integrators:
+// point by point through either basis (integrate_points.hpp), in batches over fitted bases
+// (integrate_batch.hpp), and from a piece's moments for bases of degree <= 1 (integrate_moments.hpp).
+// choose_integrator picks them, once per call and thread.
+//
+// The interfaces are templates on the mapped element and its piece so that a tetrahedral assembly can use
+// them as they are: integrator3d.hpp (PieceIntegratorOf<ClippedImage3, Piece3>, with the same LocalBlock).
+#pragma once
+#include <memory>
+
+#include "geometry/clip.hpp"
+#include "fe/component_pairs.hpp"
+#include "mesh/fluid_search.hpp"
+#include "integration/local_block.hpp"
+#include "map/mapped_triangle.hpp"
+#include "sides/options.hpp"
+#include "fe/polynomial_basis.hpp"
+#include "map/split.hpp"
+
+namespace dlmfsi {
+
+class FluidSide;
+struct CouplingReport;
+
+// What every integrator of one call reads (shared by the threads). Space: BasisOf<D>; Fit: its fitted basis.
+template <class Space, class Fit>
+struct IntegrandOf {
+  const Space& fluid_space;  // the fluid side's space (renumbered, scaled coordinates)
+  const Fit& fluid;          // its fitted basis on the coupled components
+  const Space& multiplier_space;
+  const Fit& multiplier;
+  const ComponentPairs& pairs;
+  double c1, c2;
+  bool chain;  // the chain rule; otherwise the listings' product (applies where c1 != 0)
+  // The bases' polynomial degrees (polynomial_degree: -1 when not polynomial), and the degree of a rule
+  // exact for their product (affine maps).
+  int fluid_degree, multiplier_degree, product_degree;
+};
+using Integrand = IntegrandOf<Basis, PolynomialBasis>;
+
+// The straight image (or part of a split image, split.hpp) of a solid triangle that is clipped against the
+// fluid: its pieces are integrated in fluid coordinates.
+struct ClippedImage {
+  const MappedTriangle& triangle;
+  int degree;           // of the rule on a piece where the map is not affine (exact for the product where it is)
+  const MapPart* part;  // the part of a split image, or nullptr for the whole image
+
+  // The reference point of fluid point y in the solid triangle: the affine pull-back, or Newton's from the
+  // affine guess of the triangle or, in a part, of the part.
+  Point pull_back(Point y) const {
+    if (triangle.affine) return triangle.affine_reference(y);
+    MapValue at;
+    return triangle.pull_back(y, guess(y), at);
+  }
+  // Newton's starting point for y: the affine pull-back of the triangle or, in a part, of the part (the
+  // pull-back itself on an affine triangle).
+  Point guess(Point y) const {
+    return part ? from_reference(part->xi, to_reference(part->y, y)) : triangle.affine_reference(y);
+  }
+};
+
+// Adds the integrand over one piece (image ∩ fluid element kf) to the block; the caller has entered fluid
+// element kf in the block.
+template <class Image, class PieceType>
+class PieceIntegratorOf {
+ public:
+  virtual ~PieceIntegratorOf() = default;
+  virtual void integrate(const Image& image, int kf, const PieceType& piece, LocalBlock& block) = 0;
+};
+using PieceIntegrator = PieceIntegratorOf<ClippedImage, Piece>;
+
+// Adds the integrand over one mapped solid element to the block (started by the caller on that element);
+// returns the area (volume) of its image outside the fluid mesh, >= 0 up to round-off.
+template <class MappedElement>
+class ElementIntegratorOf {
+ public:
+  virtual ~ElementIntegratorOf() = default;
+  virtual double integrate(const MappedElement& element, LocalBlock& block) = 0;
+};
+using TriangleIntegrator = ElementIntegratorOf<MappedTriangle>;
+
+// The selection, in one place: the quadrature method or the exact one, and for the exact one the piece
+// integrators for affine images and for the others:
+//   not both bases fitted, or the listings' product         -> point by point
+//   both fitted, the chain rule (or c1 = 0)                  -> batches
+//   ... and both of degree <= 1, on affine images            -> moments
+// search: the calling thread's search on the fluid side; counts: its report, which the integrators count
+// pieces, points and rule degrees in.
+std::unique_ptr<TriangleIntegrator> choose_integrator(const Integrand& integrand, const FluidSide& fluid,
+                                                      FluidSearch& search, const SolidMap& map,
+                                                      const CouplingOptions& options, CouplingReport& counts);
+
+// Images of triangles whose nonlinearity (map_shape.hpp) is above this are split into parts on which it is at
+// most this (split.hpp), where nonlinear_rule_degree gives a rule of degree p + 20.
+constexpr double kLeafNonlinearity = 0.25;
+
+// Where the map is not affine, the integrand in fluid coordinates is f(X^-1(y)) / det grad X, a series in
+// the map's nonlinearity d whose k-th term is a polynomial of degree about p + 2k (p = product_degree), so
+// degree p + 2k leaves about (d / 3)^(k+1) (measured on single triangles with P1b bubbles and P2 maps,
+// d = 0.009 to 0.3: the relative error falls by about d / 3 for each 2 degrees, and below 1e-13 for the k
+// chosen here: the smallest with (d / 3)^(k+1) <= 1e-11). d is taken in [1e-300, kLeafNonlinearity];
+// the degree is at most kMaxQforder.
+int nonlinear_rule_degree(int product_degree, double nonlinearity);
+
+}  // namespace dlmfsi

@@ -1,0 +1,60 @@
+// The integrator interface (integrator.hpp) for tetrahedra: the integrand over the same spaces in 3D, the
+// clipped image of a solid tetrahedron, and the selection of the integrators.
+//
+// A TetrahedronIntegrator adds int_T f_ij ds over a solid tetrahedron T to the tetrahedron's LocalBlock: the
+// quadrature method (quadrature_method3d.hpp) sums a rule with each point located in the fluid, the
+// exact method (exact_method3d.hpp) clips T's image against the fluid and hands each piece to a
+// PieceIntegrator3: point by point through either basis and either gradient product (integrate_points3d.hpp),
+// or, on affine images with the chain rule, from the piece's moments: its volume, centroid and second
+// moments for bases of degree <= 1 (integrate_moments3d.hpp), its monomial moments in the fluid element for
+// a fluid of higher degree and a multiplier of degree <= 1 (integrate_monomials3d.hpp).
+#pragma once
+#include <memory>
+
+#include "geometry/clip3d.hpp"
+#include "mesh/fluid_search3d.hpp"
+#include "integration/integrator.hpp"
+#include "map/map3d.hpp"
+#include "fe/polynomial_basis3d.hpp"
+
+namespace dlmfsi {
+
+class FluidSide3;
+struct CouplingReport3;
+
+using Integrand3 = IntegrandOf<Basis3, PolynomialBasis3>;
+
+// The straight image of a solid tetrahedron, or of one of the sub-tetrahedra of a curved one, clipped
+// against the fluid: its pieces are integrated in fluid coordinates.
+struct ClippedImage3 {
+  const MappedTet& tetrahedron;
+  int degree;  // of the rule on a piece: exact for the product where the map is affine
+  // For a sub-tetrahedron: its reference corners and their images, whose affine interpolant gives Newton's
+  // first guess (null for the whole image: MappedTet::affine_reference).
+  const Point3* sub_xi = nullptr;
+  const Point3* sub_y = nullptr;
+  // Newton's first guess for the reference point of y.
+  Point3 guess(Point3 y) const;
+};
+
+// Adds the integrand over one piece (image ∩ fluid tetrahedron kf) to the block (the caller has entered kf
+// in the block) and returns the piece's volume as the integrator sums it: |volume6| / 6 of each of the
+// piece's tetrahedra, in Piece3::for_each_tetrahedron's order (so the image's volume outside the fluid is
+// found without a second pass over the piece).
+class PieceIntegrator3 {
+ public:
+  virtual ~PieceIntegrator3() = default;
+  virtual double integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) = 0;
+};
+using TetrahedronIntegrator = ElementIntegratorOf<MappedTet>;
+
+// The quadrature method (quadrature_method3d.hpp) when the options ask for it; otherwise the exact method
+// with, for every piece, the point-by-point integrator and, for the pieces of affine images where both bases
+// are fitted and the product is the chain rule's (or c1 = 0), the moments when both are of degree <= 1, the
+// monomial moments when the fluid's is higher and the multiplier's <= 1. search: the calling thread's search
+// on the fluid side; counts: its report.
+std::unique_ptr<TetrahedronIntegrator> choose_integrator(const Integrand3& integrand, const FluidSide3& fluid,
+                                                         FluidSearch3& search, const CouplingOptions& options,
+                                                         CouplingReport3& counts);
+
+}  // namespace dlmfsi

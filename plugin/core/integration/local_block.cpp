@@ -1,0 +1,90 @@
+#include "integration/local_block.hpp"
+
+#include <algorithm>
+#include <utility>
+
+namespace dlmfsi {
+
+LocalBlock::LocalBlock(int multiplier_dofs, std::vector<int> used_rows, int fluid_dofs,
+                       std::vector<int> used_fluid_dofs)
+    : rows_(multiplier_dofs), used_rows_(std::move(used_rows)), used_fluid_dofs_(std::move(used_fluid_dofs)),
+      row_dofs_(multiplier_dofs), column_of_(fluid_dofs) {}
+
+void LocalBlock::enter_fluid_element(const int* dofs) {
+  for (int j : used_fluid_dofs_) {
+    const int g = dofs[j];
+    const int columns = static_cast<int>(column_dofs_.size());
+    int c = 0;
+    while (c < columns && column_dofs_[c] != g) ++c;
+    if (c == columns) {  // a new column: its entries are zero already
+      column_dofs_.push_back(g);
+      const size_t needed = column_dofs_.size() * rows_;
+      if (entries_.size() < needed) entries_.resize(2 * needed, 0.0);
+    }
+    column_of_[j] = c;
+  }
+}
+
+void LocalBlock::scatter(std::vector<Triplet>& out) {
+  std::vector<Triplet>* const one[1] = {&out};
+  scatter(one, RowRanges{1, 1});
+}
+
+void LocalBlock::scatter(std::vector<Triplet>* const* out, const RowRanges& ranges) {
+  const size_t columns = column_dofs_.size();
+  if (columns == 0) return;  // no piece (the element lies outside the fluid mesh): entries_ may be empty
+  for (int i : used_rows_) {
+    const int row = row_dofs_[i];
+    std::vector<Triplet>& to = ranges.n == 1 ? *out[0] : *out[ranges.of(row)];
+    double* entry = &entries_[i];
+    for (size_t c = 0; c < columns; ++c, entry += rows_) {
+      if (*entry == 0.0) continue;
+      // in place: a pushed temporary would be copied by a 16-byte load waiting for its two 8-byte stores
+      to.emplace_back(row, column_dofs_[c], *entry);
+      *entry = 0.0;
+    }
+  }
+}
+
+void LocalBlock::scatter(InPlaceSum& sum, std::vector<Triplet>& misses, std::vector<Triplet>& later) {
+  // The columns by increasing dof (a handful: insertion sort), so that each row's entries are found in one
+  // pass along the matrix row. An entry's sum is over the solid elements in order whatever the order of the
+  // columns within one element.
+  const int columns = static_cast<int>(column_dofs_.size());
+  if (columns == 0) return;  // no piece (the element lies outside the fluid mesh): entries_ may be empty
+  by_dof_.resize(columns);
+  for (int c = 0; c < columns; ++c) {
+    int j = c;
+    for (; j > 0 && column_dofs_[by_dof_[j - 1]] > column_dofs_[c]; --j) by_dof_[j] = by_dof_[j - 1];
+    by_dof_[j] = c;
+  }
+  const int* const dof_of = column_dofs_.data();
+  for (int i : used_rows_) {
+    const int row = row_dofs_[i];
+    if (sum.later(row)) {
+      double* entry = &entries_[i];
+      for (int c = 0; c < columns; ++c, entry += rows_) {
+        if (*entry == 0.0) continue;
+        later.emplace_back(row, dof_of[c], *entry);
+        *entry = 0.0;
+      }
+      continue;
+    }
+    const InPlaceSum::Row on_pattern = sum.row(row);
+    const int* at = on_pattern.begin;
+    double* const row_entries = entries_.data() + i;
+    for (int c : by_dof_) {
+      double& entry = row_entries[static_cast<size_t>(c) * rows_];
+      if (entry == 0.0) continue;
+      const int col = dof_of[c];
+      while (at != on_pattern.end && *at < col) ++at;
+      if (at != on_pattern.end && *at == col)
+        sum.add_at(on_pattern, at, entry);
+      else
+        misses.emplace_back(row, col, entry);
+      entry = 0.0;
+    }
+  }
+}
+
+}  // namespace dlmfsi

@@ -1,0 +1,58 @@
+#include "integration/point_values3d.hpp"
+
+namespace dlmfsi {
+
+PointValues3::PointValues3(const Integrand3& integrand) : integrand_(integrand), gradients_(integrand.c1 != 0) {}
+
+void PointValues3::evaluate(int kf, const Point3* eta, int ks, const Point3* xi, int n) {
+  n_ = n;
+  const size_t nn = static_cast<size_t>(n);
+  const size_t fluid_functions = integrand_.fluid.functions().size();
+  const size_t multiplier_functions = integrand_.multiplier.functions().size();
+  fluid_value_.resize(nn * fluid_functions);
+  fluid_gradient_.resize(3 * nn * fluid_functions);
+  multiplier_value_.resize(nn * multiplier_functions);
+  multiplier_gradient_.resize(3 * nn * multiplier_functions);
+  evaluate_side(integrand_.fluid, integrand_.fluid_space, kf, eta, fluid_value_.data(), fluid_gradient_.data());
+  evaluate_side(integrand_.multiplier, integrand_.multiplier_space, ks, xi, multiplier_value_.data(),
+                multiplier_gradient_.data());
+}
+
+void PointValues3::evaluate_fluid_gradient_sums(int kf, const Point3* eta, const double* weight, int ks,
+                                                const Point3* xi, int n) {
+  n_ = n;
+  const size_t nn = static_cast<size_t>(n);
+  const size_t fluid_functions = integrand_.fluid.functions().size();
+  const size_t multiplier_functions = integrand_.multiplier.functions().size();
+  fluid_value_.resize(nn * fluid_functions);
+  fluid_gradient_sum_.resize(3 * fluid_functions);
+  multiplier_value_.resize(nn * multiplier_functions);
+  multiplier_gradient_.resize(3 * multiplier_functions);
+  scratch_.resize(multiplier_functions);
+  integrand_.fluid.evaluate_gradient_sums(kf, eta, weight, n, fluid_value_.data(), fluid_gradient_sum_.data());
+  // the multiplier's values at the points, its (constant) gradients at the first
+  integrand_.multiplier.evaluate_points(ks, xi, n, multiplier_value_.data(), nullptr);
+  integrand_.multiplier.evaluate_points(ks, xi, 1, scratch_.data(), multiplier_gradient_.data());
+}
+
+void PointValues3::evaluate_side(const PolynomialBasis3& poly, const Basis3& space, int k, const Point3* at,
+                                 double* value, double* gradient) {
+  const int n = n_;
+  if (poly.fitted()) {
+    poly.evaluate_points(k, at, n, value, gradients_ ? gradient : nullptr);
+    return;
+  }
+  const int nc = space.components();
+  scratch_.resize(static_cast<size_t>(space.local_dofs()) * nc * 4);
+  const std::vector<int>& functions = poly.functions();
+  for (int q = 0; q < n; ++q) {
+    space.evaluate(k, at[q], scratch_.data());
+    for (size_t f = 0; f < functions.size(); ++f) {
+      const double* o = &scratch_[functions[f] * 4];
+      value[f * n + q] = o[0];
+      for (int i = 0; i < 3; ++i) gradient[(3 * f + i) * n + q] = o[1 + i];
+    }
+  }
+}
+
+}  // namespace dlmfsi

@@ -1,0 +1,54 @@
+// Which fluid tetrahedra does a mapped solid tetrahedron meet?
+#pragma once
+#include "geometry/clip3d.hpp"
+#include "mesh/fluid_search_of.hpp"
+#include "mesh/mesh3d.hpp"
+#include "geometry/predicates3d.hpp"
+
+namespace dlmfsi {
+
+// The tetrahedral meshes for FluidGridOf and FluidSearchOf.
+struct Tetrahedra {
+  using Mesh = Mesh3;
+  using Point = Point3;
+  using Piece = Piece3;
+  static constexpr int kDim = 3, kCorners = 4;
+  // A clip costs several locations here: the search locates t's centroid first (FluidSearchOf).
+  static constexpr bool kClipHintFirst = false;
+
+  static double coordinate(Point3 p, int a) { return dlmfsi::coordinate(p, a); }
+  // The grid's cells per axis for nt tetrahedra over a box of widths w.
+  static void cells_per_axis(int nt, const double w[3], int n[3]);
+  // The bound on a visibility walk's steps in a mesh of n tetrahedra.
+  static int max_walk_steps(int n);
+
+  static Point3 centroid(const Point3 t[4]) { return 0.25 * (t[0] + t[1] + t[2] + t[3]); }
+  // The side of p with respect to the face of tetrahedron k opposite vertex i.
+  static int side(const Mesh3& m, int k, int i, Point3 p) {
+    Point3 c[4];
+    m.corners(k, c);
+    c[i] = p;
+    return orient3d(c[0], c[1], c[2], c[3]);
+  }
+  using Faces = TetFaces;
+  static Piece3 clip(const Point3 t[4], const TetFaces& faces, const Point3 k[4], unsigned& beyond) {
+    return dlmfsi::clip(t, faces, k, beyond);
+  }
+  struct Rest {};  // the clipper tells nothing of t beyond a face
+  static Piece3 clip(const Point3 t[4], const TetFaces& faces, const Point3 k[4], unsigned& beyond, Rest&) {
+    return dlmfsi::clip(t, faces, k, beyond);
+  }
+  static int rest_facet(const Rest&) { return -1; }
+  static const Piece3* rest_piece(const Rest&) { return nullptr; }
+  static unsigned rest_corners(const Rest&) { return 0; }
+  static bool reaches_beyond(unsigned beyond, int i) { return beyond & (1u << i); }
+};
+
+// A uniform bucket grid over the fluid tetrahedra's bounding boxes.
+using FluidGrid3 = FluidGridOf<Tetrahedra>;
+// Point location and the pieces of a solid tetrahedron over the fluid tetrahedra.
+using FluidSearch3 = FluidSearchOf<Tetrahedra>;
+extern template class FluidGridOf<Tetrahedra>;
+extern template class FluidSearchOf<Tetrahedra>;
+
+}  // namespace dlmfsi

@@ -1,0 +1,182 @@
+// Point location and piece enumeration over a fluid simplex mesh, for either dimension.
+#pragma once
+#include <algorithm>
+#include <cstddef>
+#include <vector>
+
+#include "mesh/fluid_grid.hpp"
+
+namespace dlmfsi {
+
+// One per thread (it keeps visit marks). Elements describes the mesh (Triangles in fluid_search.hpp,
+// Tetrahedra in fluid_search3d.hpp): besides what FluidGridOf uses, its Piece type, centroid(t),
+// side(mesh, k, i, p) (the exact sign of p with respect to facet i of element k, opposite vertex i: +1 on
+// the element's side), max_walk_steps(n), kClipHintFirst (does for_each_piece clip t against the hint
+// before it locates t's centroid?), Faces (what clip prepares once from t), clip(t, faces, k, beyond)
+// and reaches_beyond(beyond, i) (t reaches beyond facet i of k), and Rest with clip(t, faces, k, beyond,
+// rest), rest_facet(rest), rest_piece(rest), rest_corners(rest): what clip tells of the part of t beyond one
+// facet of k when t ∩ k is t's part on the inner side of that facet's line or plane (facet -1 otherwise).
+template <class Elements>
+class FluidSearchOf {
+ public:
+  static constexpr int kCorners = Elements::kCorners;
+  using MeshT = typename Elements::Mesh;
+  using PointT = typename Elements::Point;
+  using PieceT = typename Elements::Piece;
+
+  explicit FluidSearchOf(const FluidGridOf<Elements>& grid)
+      : grid_(grid), fluid_(grid.fluid()), stamp_of_(grid.fluid().size(), 0u) {}
+
+  // A fluid element whose closed set contains p, by a visibility walk from hint (>= 0) with exact
+  // predicates, falling back to the grid; -1 when p lies outside the fluid mesh.
+  int locate(PointT p, int hint) const;
+
+  // Calls visit(k, piece) once for every fluid element k whose interior meets the interior of the
+  // positively oriented element t, with piece = t ∩ k. Advancing front: from the hint when it meets t
+  // (kClipHintFirst) or else the element holding t's centroid, across fluid facets while pieces are
+  // non-empty (the elements meeting a convex set are facet-connected through such elements, and a path
+  // inside t crosses each facet where t reaches beyond its line or plane); the grid when the centroid is
+  // outside the fluid mesh, and after the walk when t reaches beyond a boundary facet of a visited element
+  // (t may re-enter a non-convex mesh). hint: where the walk starts, updated to an element that meets t.
+  template <class Visit>
+  void for_each_piece(const PointT t[kCorners], int& hint, Visit&& visit);
+
+ private:
+  // Does p lie in the closed element k?
+  bool in_element(int k, PointT p) const {
+    for (int i = 0; i < kCorners; ++i)
+      if (Elements::side(fluid_, k, i, p) < 0) return false;
+    return true;
+  }
+  // Do the corners of t in mask (bit i: corner i) lie in the closed element k?
+  bool holds_corners(int k, const PointT t[kCorners], unsigned mask) const {
+    for (int c = 0; c < kCorners; ++c)
+      if ((mask & (1u << c)) && !in_element(k, t[c])) return false;
+    return true;
+  }
+  bool mark(int k) {
+    if (stamp_of_[k] == stamp_) return false;
+    stamp_of_[k] = stamp_;
+    return true;
+  }
+  const FluidGridOf<Elements>& grid_;
+  const MeshT& fluid_;
+  std::vector<unsigned> stamp_of_;
+  unsigned stamp_ = 0;
+  std::vector<int> queue_;
+};
+
+template <class Elements>
+int FluidSearchOf<Elements>::locate(PointT p, int hint) const {
+  const MeshT& m = fluid_;
+  if (hint >= 0 && hint < m.size()) {
+    // Visibility walk: step across a facet that has p strictly on its far side; the facet tried first
+    // rotates so that the walk cannot cycle on non-Delaunay meshes for long (bounded anyway).
+    int k = hint;
+    const int max_steps = Elements::max_walk_steps(m.size());
+    for (int step = 0; step < max_steps; ++step) {
+      int next = -2;
+      for (int r = 0; r < kCorners; ++r) {
+        const int i = (r + step) % kCorners;
+        if (Elements::side(m, k, i, p) < 0) {
+          next = m.neighbours[k][i];
+          break;
+        }
+      }
+      if (next == -2) return k;  // p is in the closed element k
+      if (next < 0) break;       // p is beyond the boundary in this direction: ask the grid
+      k = next;
+    }
+  }
+  int found = -1;
+  grid_.for_each_in_box(p, p, [&](int k) {
+    if (found < 0 && in_element(k, p)) found = k;
+  });
+  return found;
+}
+
+template <class Elements>
+template <class Visit>
+void FluidSearchOf<Elements>::for_each_piece(const PointT t[kCorners], int& hint, Visit&& visit) {
+  if (++stamp_ == 0) {  // wrapped: clear the marks
+    std::fill(stamp_of_.begin(), stamp_of_.end(), 0u);
+    stamp_ = 1;
+  }
+  typename Elements::Faces t_faces;  // what clip needs of t, formed once for all the elements it meets
+  t_faces.set(t);
+  PointT k_corners[kCorners];
+  unsigned beyond;
+  // The front may start from any element that meets t: with kClipHintFirst the hint's first (the last
+  // element's start, which meets t when the elements come in an order that keeps neighbours together),
+  // else the one holding t's centroid.
+  int start = -1;
+  PieceT first;
+  typename Elements::Rest rest;
+  if (Elements::kClipHintFirst && hint >= 0 && hint < fluid_.size()) {
+    fluid_.corners(hint, k_corners);
+    first = Elements::clip(t, t_faces, k_corners, beyond, rest);
+    if (first.n > 0) start = hint;
+  }
+  if (start < 0) {
+    start = locate(Elements::centroid(t), hint);
+    if (start >= 0 && !(Elements::kClipHintFirst && start == hint)) {  // the hint's piece is empty already
+      fluid_.corners(start, k_corners);
+      first = Elements::clip(t, t_faces, k_corners, beyond, rest);
+    }
+  }
+  if (start >= 0) {
+    if (first.n > 0) {
+      hint = start;
+      // t ∩ start is t's part on the inner side of one facet's line: t lies in start and the neighbour
+      // across that facet when t's corners beyond it lie in that closed neighbour (the rest's other corners
+      // are on the facet, where it crosses t's edges properly), and then the two pieces are all (the mesh
+      // conforms).
+      const int facet = Elements::rest_facet(rest);
+      const int across = facet >= 0 ? fluid_.neighbours[start][facet] : -1;
+      if (across >= 0 && holds_corners(across, t, Elements::rest_corners(rest))) {
+        visit(start, first);
+        visit(across, *Elements::rest_piece(rest));
+        return;
+      }
+      queue_.clear();
+      queue_.push_back(start);
+      mark(start);
+      bool at_boundary = false;
+      for (std::size_t q = 0; q < queue_.size(); ++q) {
+        const int k = queue_[q];
+        if (q > 0) {
+          fluid_.corners(k, k_corners);
+          const PieceT piece = Elements::clip(t, t_faces, k_corners, beyond);
+          if (piece.n == 0) continue;
+          visit(k, piece);
+        } else {
+          visit(k, first);
+        }
+        // Across facet i only where t reaches beyond it.
+        for (int i = 0; i < kCorners; ++i) {
+          if (!Elements::reaches_beyond(beyond, i)) continue;
+          const int nb = fluid_.neighbours[k][i];
+          if (nb < 0) at_boundary = true;
+          else if (mark(nb)) queue_.push_back(nb);
+        }
+      }
+      // The walk reached every piece unless t leaves the fluid mesh across a boundary facet of a visited
+      // element: on a non-convex mesh (a notch, a hole) t may come back in elsewhere, and the part of t
+      // inside is then disconnected. The grid finds the other parts (the marks skip what the walk tested).
+      if (!at_boundary) return;
+    }
+  }
+  // The centroid is outside the fluid mesh (or its element misses a sliver t), or t may leave and re-enter
+  // the mesh: test the grid's candidates.
+  grid_.for_each_near(t, kCorners, [&](int k) {
+    if (!mark(k)) return;
+    fluid_.corners(k, k_corners);
+    const PieceT piece = Elements::clip(t, t_faces, k_corners, beyond);
+    if (piece.n > 0) {
+      hint = k;
+      visit(k, piece);
+    }
+  });
+}
+
+}  // namespace dlmfsi
