@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
   opt.c2 = 1;
   opt.threads = threads;
   CouplingAssembly3 assembly;
-  CouplingReport3 report;
+  CouplingReport report;
   std::vector<double> cpu;
   double sum = 0;
   for (int call = 0; call < calls; ++call) {

@@ -331,7 +331,7 @@ int compare3d(int nf, int ns, int runs) {
       const SolidSide3 solid_side(solid, vs, {0});
       const test3d::AffineMap3 map(solid, r, shift);
       CouplingAssembly3 assembly;
-      CouplingReport3 report;
+      CouplingReport report;
       const CsrMatrix& m = assembly.assemble(fluid_side, solid_side, map, opt, &report);
       t_dlm.push_back(cpu_seconds() - t0);
       pieces = report.pieces;

@@ -229,9 +229,9 @@ const dlmfsi::CsrMatrix& DlmfsiOp::assemble(Stack stack, const dlmfsi::CouplingO
   dlmfsi::CouplingReport report;
   const dlmfsi::CsrMatrix& b = assembly().assemble(fluid, solid, map, opt, &report);
   if (verbosity > 1) cout << report.summary() << endl;
-  if (opt.drop_outside && report.outside_area > 0 && verbosity > 0)
-    cout << "dlmfsi: dropped area outside the fluid mesh " << report.outside_area << " (solid triangle "
-         << report.worst_triangle << " worst)" << endl;
+  if (opt.drop_outside && report.outside_measure > 0 && verbosity > 0)
+    cout << "dlmfsi: dropped area outside the fluid mesh " << report.outside_measure << " (solid triangle "
+         << report.worst_element << " worst)" << endl;
   return b;
 }
 

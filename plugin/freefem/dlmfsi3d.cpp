@@ -195,12 +195,12 @@ AnyType Dlmfsi3Op::operator()(Stack stack) const {
         ++kept;
       }
     const dlmfsi::FieldMap3 xmap(solid.mesh(), spaces, values, comps, fits, kept == 3 ? opt.threads : 1);
-    dlmfsi::CouplingReport3 report;
+    dlmfsi::CouplingReport report;
     const dlmfsi::CsrMatrix& b = assembly3().assemble(fluid, solid, xmap, opt, &report);
     if (verbosity > 1) cout << report.summary() << endl;
-    if (opt.drop_outside && report.outside_volume > 0 && verbosity > 0)
-      cout << "dlmfsi: dropped volume outside the fluid mesh " << report.outside_volume << " (solid tetrahedron "
-           << report.worst_tetrahedron << " worst)" << endl;
+    if (opt.drop_outside && report.outside_measure > 0 && verbosity > 0)
+      cout << "dlmfsi: dropped volume outside the fluid mesh " << report.outside_measure << " (solid tetrahedron "
+           << report.worst_element << " worst)" << endl;
     MatriceMorse<double>* pa = new MatriceMorse<double>(b.rows, b.cols, 0, 0);
     pa->set(b.rows, b.cols, 0, b.value.size(), const_cast<int*>(b.start.data()), const_cast<int*>(b.column.data()),
             const_cast<double*>(b.value.data()), 0, 1);

@@ -4,7 +4,7 @@
 #include <random>
 
 #include "fe/basis.hpp"
-#include "map/map.hpp"
+#include "map/solid_map.hpp"
 #include "mesh/mesh.hpp"
 
 namespace dlmfsi::test {

@@ -213,7 +213,7 @@ inline Mesh3 quarter_turn(Mesh3 mesh, Point3 centre) {
 #include <map>
 
 #include "fe/basis.hpp"
-#include "map/map3d.hpp"
+#include "map/mapped_element3d.hpp"
 
 namespace dlmfsi::test3d {
 
@@ -412,7 +412,7 @@ inline double bilinear(const CsrMatrix& b, const std::vector<double>& l, const s
 // The error message of assembling P1 x P1 on the two meshes under the map ("" when it assembles);
 // drop: the solid's part outside the fluid mesh dropped rather than an error.
 inline std::string coupling_error(const Mesh3& fluid, const Mesh3& solid, const SolidMap3& map, bool drop = false,
-                                  CouplingReport3* report = nullptr) {
+                                  CouplingReport* report = nullptr) {
   const P1Tet f(fluid), s(solid);
   try {
     CouplingOptions opt;

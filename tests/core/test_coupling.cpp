@@ -104,7 +104,7 @@ TEST(Coupling, LinearDataUnderRotationIsExact) {
       }
     }
     EXPECT_NEAR(form(b, lh, uh), want, 1e-12 * std::fabs(want));
-    EXPECT_LT(rep.outside_area, 1e-14 * rep.image_area);
+    EXPECT_LT(rep.outside_measure, 1e-14 * rep.image_measure);
   }
 }
 
@@ -162,7 +162,7 @@ TEST(Coupling, KinkedDataUnderShearMatchesBruteForceWithGradients) {
   opt.c2 = 3;
   CouplingReport rep;
   CsrMatrix b = assemble_coupling(fluid, vf, solid, vs, map, opt, &rep);
-  EXPECT_LT(rep.outside_area, 1e-14 * rep.image_area);
+  EXPECT_LT(rep.outside_measure, 1e-14 * rep.image_measure);
   auto nodal = [](const Mesh& mesh, const std::vector<double>& v, int k, double out[3], Point corner[3]) {
     mesh.corners(k, corner);
     for (int i = 0; i < 3; ++i) out[i] = v[mesh.triangles[k][i]];
@@ -192,8 +192,8 @@ TEST(CouplingErrors, OutsideTheFluidIsAnErrorUnlessDropped) {
   opt.drop_outside = true;
   CouplingReport rep;
   assemble_coupling(fluid, vf, solid, vs, id, opt, &rep);
-  EXPECT_NEAR(rep.outside_area, 0.2 * 0.2, 1e-15);
-  EXPECT_NEAR(rep.image_area, 0.4 * 0.2, 1e-15);
+  EXPECT_NEAR(rep.outside_measure, 0.2 * 0.2, 1e-15);
+  EXPECT_NEAR(rep.image_measure, 0.4 * 0.2, 1e-15);
 }
 
 TEST(CouplingErrors, ReflectionAndFlatMapsAreErrors) {

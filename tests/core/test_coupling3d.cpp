@@ -23,7 +23,7 @@ namespace {
 const double kIdentity[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
 
 CsrMatrix couple(const Mesh3& fluid, const Basis3& fluid_space, const Mesh3& solid, const Basis3& multiplier,
-                 const SolidMap3& map, double c1, double c2, CouplingReport3* report = nullptr, int threads = 1,
+                 const SolidMap3& map, double c1, double c2, CouplingReport* report = nullptr, int threads = 1,
                  std::vector<int> fc = {0}, std::vector<int> sc = {0},
                  CouplingOptions::Method method = CouplingOptions::Method::Exact) {
   CouplingOptions opt;
@@ -134,12 +134,12 @@ TEST(Coupling3d, VolumeOnFluidMeshesContainingTheSolidBoundary) {
     for (int pairing = 0; pairing < 3; ++pairing) {
       const Basis3& f = pairing == 1 ? static_cast<const Basis3&>(fp2) : fp1;
       const Basis3& s = pairing == 2 ? static_cast<const Basis3&>(sp2) : sp1;
-      CouplingReport3 report;
+      CouplingReport report;
       const CsrMatrix b = couple(fluid, f, solid, s, identity, 0, 1, &report);
       double sum = 0;
       for (double v : b.value) sum += v;
       EXPECT_NEAR(sum, volume, 1e-13 * volume) << "pairing " << pairing << ": " << report.summary();
-      EXPECT_LE(report.outside_volume, 1e-15 * volume);  // round-off of the pieces against their image
+      EXPECT_LE(report.outside_measure, 1e-15 * volume);  // round-off of the pieces against their image
     }
   }
 }
@@ -173,7 +173,7 @@ TEST(Coupling3d, PolynomialExactnessUnderRotatedShearedMaps) {
     const Basis3& fs = c.own_fits ? static_cast<const Basis3&>(fp2_own) : c.fluid_p2 ? static_cast<const Basis3&>(fp2) : fp1;
     const Basis3& ss = c.solid_p2 ? static_cast<const Basis3&>(sp2) : sp1;
     for (double c1 : {0.0, 1.0}) {
-      CouplingReport3 report;
+      CouplingReport report;
       const CsrMatrix b = couple(fluid, fs, solid, ss, map, c1, 1, &report);
       const double exact = reference(solid, map, a, l, gl, u, gu, c1, 1);
       EXPECT_NEAR(bilinear(b, lv, uv), exact, 1e-13 * std::fabs(exact)) << c.name << " c1 = " << c1 << ": " << report.summary();
@@ -323,15 +323,15 @@ TEST(Coupling3dQuadrature, ExactOnGlobalPolynomialsUnderRotatedShearedMaps) {
       opt.method = CouplingOptions::Method::Quadrature;
       opt.c1 = c1;
       opt.subdivide = subdivide;
-      CouplingReport3 report;
+      CouplingReport report;
       const CsrMatrix b = assemble_coupling(fs, ss, map, opt, &report);
       const double exact = reference(solid, map, a, l2, gl2, u2, gu2, c1, 1);
       EXPECT_NEAR(bilinear(b, lv, uv), exact, 1e-13 * std::fabs(exact))
           << "subdivide " << subdivide << ", c1 = " << c1 << ": " << report.summary();
-      EXPECT_EQ(report.outside_volume, 0);
+      EXPECT_EQ(report.outside_measure, 0);
     }
   // 1'B1 = the solid's volume (the weights in solid measure), whatever the map's det
-  CouplingReport3 report;
+  CouplingReport report;
   const CsrMatrix b = couple(fluid, fp1, solid, sp2, map, 0, 1, &report, 1, {0}, {0}, CouplingOptions::Method::Quadrature);
   double sum = 0;
   for (double v : b.value) sum += v;
@@ -370,11 +370,11 @@ TEST(Coupling3dQuadrature, RulePointsOnFluidVerticesEdgesAndFaces) {
     opt.qforder = 0;
     opt.c1 = 0;
     opt.subdivide = subdivide;
-    CouplingReport3 report;
+    CouplingReport report;
     const double value = bilinear(assemble_coupling(fs, ss, identity, opt, &report), lv, uv);
     // the centroid rule is exact for linear data on each part, and the parts tile the tetrahedron
     EXPECT_NEAR(value, volume * u(0.25 * (c[0] + c[1] + c[2] + c[3])), 1e-14) << "subdivide " << subdivide;
-    EXPECT_EQ(report.outside_volume, 0);
+    EXPECT_EQ(report.outside_measure, 0);
   }
 }
 
@@ -389,17 +389,17 @@ TEST(Coupling3dQuadrature, PointsOutsideTheFluidAreAnErrorOrDropped) {
   const SolidSide3 ss(solid, s, {0});
   EXPECT_THROW(assemble_coupling(fs, ss, out, opt), Error);
   opt.drop_outside = true;
-  CouplingReport3 report;
+  CouplingReport report;
   assemble_coupling(fs, ss, out, opt, &report);
-  EXPECT_GT(report.outside_volume, 0.2 * exact_volume(solid));
-  EXPECT_LT(report.outside_volume, 0.8 * exact_volume(solid));
+  EXPECT_GT(report.outside_measure, 0.2 * exact_volume(solid));
+  EXPECT_LT(report.outside_measure, 0.8 * exact_volume(solid));
 }
 
 TEST(Coupling3d, BadInputIsAnError) {
   const Mesh3 fluid = box_mesh(3, 3, 3, {0, 0, 0}, {1, 1, 1});
   const Mesh3 solid = box_mesh(2, 2, 2, {0.25, 0.25, 0.25}, {0.5, 0.5, 0.5});
   const P1Tet f(fluid), s(solid);
-  auto message = [&](const SolidMap3& map, bool drop = false, CouplingReport3* report = nullptr) {
+  auto message = [&](const SolidMap3& map, bool drop = false, CouplingReport* report = nullptr) {
     return coupling_error(fluid, solid, map, drop, report);
   };
   const double mirror[3][3] = {{-1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
@@ -409,9 +409,9 @@ TEST(Coupling3d, BadInputIsAnError) {
   // moved by 0.5 along x: [0.75, 1.25] x ..., half of it outside the fluid box
   const AffineMap3 out(solid, kIdentity, {0.5, 0, 0});
   EXPECT_NE(message(out).find("leaves the fluid mesh"), std::string::npos);
-  CouplingReport3 report;
+  CouplingReport report;
   EXPECT_EQ(message(out, true, &report), "");
-  EXPECT_NEAR(report.outside_volume, 0.0625, 1e-15);
+  EXPECT_NEAR(report.outside_measure, 0.0625, 1e-15);
   const double nan = std::nan("");
   const AffineMap3 bad(solid, kIdentity, {nan, 0, 0});
   EXPECT_NE(message(bad).find("NaN"), std::string::npos);

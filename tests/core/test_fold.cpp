@@ -9,7 +9,7 @@
 #include "errors.hpp"
 #include "map/fold.hpp"
 #include "fe/lattice.hpp"
-#include "map/triangle_map.hpp"
+#include "map/element_map.hpp"
 
 using namespace dlmfsi;
 

@@ -69,7 +69,7 @@ Mesh3 reference_tetrahedron() {
 }
 
 CsrMatrix couple(const Mesh3& fluid, const Basis3& fluid_space, const Mesh3& solid, const Basis3& multiplier,
-                 const SolidMap3& map, double c1, double c2, CouplingReport3* report = nullptr) {
+                 const SolidMap3& map, double c1, double c2, CouplingReport* report = nullptr) {
   CouplingOptions opt;
   opt.c1 = c1;
   opt.c2 = c2;
@@ -107,7 +107,7 @@ TEST(Fold3d, FoldInsideATetrahedronIsAnError) {
   // is certified and assembled
   const Cylinder off{-4, -0.3, 0.4, 0.3};
   const FormulaMap3 valid(solid, off, 2);
-  CouplingReport3 report;
+  CouplingReport report;
   EXPECT_EQ(coupling_error(fluid, solid, valid, false, &report), "");
   EXPECT_EQ(report.curved, 1);
 }
@@ -150,7 +150,7 @@ TEST(Fold3d, P2MapsCloseToFoldingAreAccurate) {
     const FieldMap3 map(solid, spaces, c, comp);
     double exact = 0;
     for (const RulePoint3& q : tetrahedron_rule(8)) exact += q.weight / 6 * u(slid(q.xi, t));
-    CouplingReport3 report;
+    CouplingReport report;
     const CsrMatrix volume = couple(fluid, fluid_p1, solid, multiplier, map, 0, 1, &report);
     double sum = 0;
     for (double v : volume.value) sum += v;
@@ -209,7 +209,7 @@ TEST(Fold3d, AffineP2MapsGiveTheP1MatricesBitForBit) {
   const double* v2[3] = {c2[0].data(), c2[1].data(), c2[2].data()};
   const FieldMap3 map1(solid, s1, v1, comp), map2(solid, s2, v2, comp);
   for (const Basis3* f : {static_cast<const Basis3*>(&fluid_p1), static_cast<const Basis3*>(&fluid_p2)}) {
-    CouplingReport3 report1, report2;
+    CouplingReport report1, report2;
     const CsrMatrix b1 = couple(fluid, *f, solid, multiplier, map1, 0.5, 2, &report1);
     const CsrMatrix b2 = couple(fluid, *f, solid, multiplier, map2, 0.5, 2, &report2);
     EXPECT_EQ(report2.affine, solid.size()) << report2.summary();
@@ -258,7 +258,7 @@ TEST(Fold3d, BubbleMapsUpToTheFoldAreAccurate) {
     // u o X has degree 8: the degree-8 rule on the tetrahedron is exact
     double exact = 0;
     for (const RulePoint3& q : tetrahedron_rule(8)) exact += q.weight / 6 * u(x_of(q.xi));
-    CouplingReport3 report;
+    CouplingReport report;
     const CsrMatrix volume = couple(fluid, fluid_p1, solid, multiplier, map, 0, 1, &report);
     double sum = 0;
     for (double v : volume.value) sum += v;

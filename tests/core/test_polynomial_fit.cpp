@@ -1,6 +1,6 @@
 // Bases as polynomials: the lattice fit's zeros (polynomial_fit.hpp: a basis fitted at a degree above its
 // own gets exact zeros for the monomials it does not have, and still evaluates the basis), in 2D and 3D;
-// and the 3D bases' inner loop (polynomial_values3d.hpp): polynomials of every lattice degree, sparse and
+// and the 3D bases' inner loop (points_evaluation3d.hpp): polynomials of every lattice degree, sparse and
 // dense, with twins, evaluated with their physical gradients, against sums of c x^a y^b z^c written from
 // the exponents in long double.
 #include <gtest/gtest.h>
@@ -13,7 +13,7 @@
 #include "fe/basis_fit.hpp"
 #include "fe/lattice3d.hpp"
 #include "fe/polynomial_basis3d.hpp"
-#include "fe/polynomial_values3d.hpp"
+#include "fe/points_evaluation3d.hpp"
 #include "support.hpp"
 #include "support3d.hpp"
 

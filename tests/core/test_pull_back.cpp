@@ -12,7 +12,7 @@
 
 #include "errors.hpp"
 #include "map/pull_back.hpp"
-#include "map/triangle_map.hpp"
+#include "map/element_map.hpp"
 
 using namespace dlmfsi;
 

@@ -170,7 +170,7 @@ void check_path(ScaledTestMap::Kind kind, CouplingOptions opt, double tol, const
         [&](Point s, double& v, double* g) { d.multiplier(s, v, g); });
     const double got = form(b, d.lam, d.u);
     EXPECT_NEAR(got, want, tol * std::fabs(want)) << path << " at scale " << scale;
-    EXPECT_LE(rep.outside_area, 1e-14 * rep.image_area) << path << " at scale " << scale;
+    EXPECT_LE(rep.outside_measure, 1e-14 * rep.image_measure) << path << " at scale " << scale;
   }
 }
 

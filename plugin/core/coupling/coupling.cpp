@@ -10,7 +10,7 @@
 #include "buffer_room.hpp"
 #include "fe/component_pairs.hpp"
 #include "errors.hpp"
-#include "integration/integrator.hpp"
+#include "integration/choose_integrator.hpp"
 #include "mesh/kept_search.hpp"
 #include "integration/local_block.hpp"
 #include "parallel/on_threads.hpp"
@@ -19,19 +19,6 @@
 #include "sides/validation.hpp"
 
 namespace dlmfsi {
-
-std::string CouplingReport::summary() const {
-  char s[512];
-  std::snprintf(s, sizeof s,
-                "dlmfsi: %ld solid triangles (%ld affine, %ld straight, %ld curved; %ld split into %ld parts), %ld pieces, "
-                "%ld points, degrees fluid %d multiplier %d rule %d/%d, image area %.6g, outside %.3g, %.3f s "
-                "(setup %.3f, pieces %.3f, matrix %.3f)",
-                solid_triangles, affine, straight, curved, split, parts, pieces, points, fluid_degree,
-                solid_degree, rule_degree,
-                curved_rule_degree, image_area, outside_area, seconds, setup_seconds, pieces_seconds,
-                seconds - setup_seconds - pieces_seconds);
-  return s;
-}
 
 namespace {
 
@@ -80,15 +67,15 @@ class Assembler {
     MappedTriangle mt;
     mt.prepare(solid_.mesh(), map_, ks);
     block_.start(solid_.rows(ks));
-    ++report.solid_triangles;
+    ++report.solid_elements;
     (mt.affine ? report.affine : (mt.straight ? report.straight : report.curved))++;
     const double image_area = 0.5 * area2(mt.image[0], mt.image[1], mt.image[2]);
     const double outside = std::max(integrator_->integrate(mt, block_), 0.0);
-    report.image_area += image_area;
-    report.outside_area += outside;
+    report.image_measure += image_area;
+    report.outside_measure += outside;
     if (outside > report.worst_outside) {
       report.worst_outside = outside;
-      report.worst_triangle = ks;
+      report.worst_element = ks;
     }
     if (in_place_)
       block_.scatter(*in_place_, *lists[0], *lists[1]);
@@ -117,25 +104,6 @@ class Assembler {
   LocalBlock block_;
   std::unique_ptr<TriangleIntegrator> integrator_;
 };
-
-// The counts of a thread added to the total.
-void add_counts(const CouplingReport& r, CouplingReport& total) {
-  total.solid_triangles += r.solid_triangles;
-  total.pieces += r.pieces;
-  total.points += r.points;
-  total.split += r.split;
-  total.parts += r.parts;
-  total.affine += r.affine;
-  total.straight += r.straight;
-  total.curved += r.curved;
-  total.curved_rule_degree = std::max(total.curved_rule_degree, r.curved_rule_degree);
-  total.image_area += r.image_area;
-  total.outside_area += r.outside_area;
-  if (r.worst_outside > total.worst_outside) {
-    total.worst_outside = r.worst_outside;
-    total.worst_triangle = r.worst_triangle;
-  }
-}
 
 // The solid triangles of share [first, last) of the indices, in the solid side's order (the order itself
 // for the whole; otherwise written into out).
@@ -179,18 +147,18 @@ int product_degree(int fluid_degree, int multiplier_degree, double c2) {
 // The areas turned into the caller's units (the fluid side's coordinates are 2^-scale of the caller's);
 // Error when the mapped solid leaves the fluid mesh by more than outside_tol (unless drop_outside).
 void check_outside(const CouplingOptions& opt, int scale, CouplingReport& total) {
-  const bool leaves = total.outside_area > opt.outside_tol * total.image_area;
-  const double relative = total.outside_area / total.image_area;
+  const bool leaves = total.outside_measure > opt.outside_tol * total.image_measure;
+  const double relative = total.outside_measure / total.image_measure;
   const double area_unit = std::ldexp(1.0, 2 * scale);
-  total.image_area *= area_unit;
-  total.outside_area *= area_unit;
+  total.image_measure *= area_unit;
+  total.outside_measure *= area_unit;
   total.worst_outside *= area_unit;
   if (opt.drop_outside || !leaves) return;
   char msg[400];
   std::snprintf(msg, sizeof msg,
                 "the mapped solid leaves the fluid mesh: area %.6g outside of %.6g (relative %.3g > %.3g); "
                 "worst is solid triangle %d with %.6g outside. Pass outside=\"drop\" to drop that part.",
-                total.outside_area, total.image_area, relative, opt.outside_tol, total.worst_triangle,
+                total.outside_measure, total.image_measure, relative, opt.outside_tol, total.worst_element,
                 total.worst_outside);
   throw Error(msg);
 }
@@ -298,7 +266,7 @@ const CsrMatrix& CouplingAssembly::assemble_checked(const FluidSide& fluid, cons
   }, elements);
   total.pieces_seconds = seconds_since(start) - total.setup_seconds;
 
-  for (const auto& a : assemblers) add_counts(a->report, total);
+  for (const auto& a : assemblers) total.add_counts(a->report);
   check_outside(opt, fluid.scale(), total);
   const CsrMatrix& by_rows =
       in_place ? matrix_.build_on_last_pattern(misses_.data(), later_.data(), threads)

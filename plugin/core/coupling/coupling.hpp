@@ -5,25 +5,14 @@
 #include <vector>
 
 #include "fe/basis.hpp"
-#include "map/map.hpp"
+#include "map/solid_map.hpp"
 #include "mesh/mesh.hpp"
 #include "sides/options.hpp"
+#include "sides/report.hpp"
 #include "sides/sides.hpp"
 #include "sparse/sparse.hpp"
 
 namespace dlmfsi {
-
-struct CouplingReport {
-  long solid_triangles = 0, pieces = 0, points = 0, affine = 0, straight = 0, curved = 0;
-  // images split into straight parts (curved, or far from affine: split.hpp), and the parts
-  long split = 0, parts = 0;
-  double image_area = 0, outside_area = 0;  // of the mapped solid, and the part outside the fluid mesh
-  int worst_triangle = -1;                  // the solid triangle with most area outside
-  double worst_outside = 0;
-  int fluid_degree = 0, solid_degree = 0, rule_degree = 0, curved_rule_degree = 0;  // curved: the highest used
-  double seconds = 0, setup_seconds = 0, pieces_seconds = 0;  // total; bases and grid; clipping and integration
-  std::string summary() const;
-};
 
 // B_ij = int_{solid} c1 grad_s psi_i : grad_s (phi_j o X) + c2 psi_i . (phi_j o X) ds,
 // psi_i the multiplier basis (rows: multiplier dofs), phi_j the fluid basis (columns: fluid dofs),

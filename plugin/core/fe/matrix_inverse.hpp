@@ -5,6 +5,8 @@
 #include <utility>
 #include <vector>
 
+#include "point3.hpp"
+
 namespace dlmfsi {
 
 // The inverse of the n x n matrix m (row-major), by Gauss-Jordan elimination on [m | I] with partial
@@ -34,6 +36,17 @@ inline std::vector<double> inverse(const std::vector<double>& m, int n) {
   for (int r = 0; r < n; ++r)
     for (int c = 0; c < n; ++c) inv[static_cast<std::size_t>(r) * n + c] = at(r, n + c);
   return inv;
+}
+
+// The inverse of the 3 x 3 matrix with columns e1, e2, e3: rows (e2 x e3, e3 x e1, e1 x e2) / det.
+inline void inverse_of_columns(Point3 e1, Point3 e2, Point3 e3, double inv[3][3]) {
+  const double det = dot(e1, cross(e2, e3));
+  const Point3 rows[3] = {cross(e2, e3), cross(e3, e1), cross(e1, e2)};
+  for (int r = 0; r < 3; ++r) {
+    inv[r][0] = rows[r].x / det;
+    inv[r][1] = rows[r].y / det;
+    inv[r][2] = rows[r].z / det;
+  }
 }
 
 }  // namespace dlmfsi

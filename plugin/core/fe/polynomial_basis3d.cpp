@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "fe/polynomial_fit.hpp"
-#include "fe/polynomial_values3d.hpp"
+#include "fe/points_evaluation3d.hpp"
 
 namespace dlmfsi {
 

@@ -10,8 +10,8 @@
 #include "fe/basis.hpp"
 #include "fe/lattice3d.hpp"
 #include "mesh/mesh3d.hpp"
-#include "fe/polynomial_values3d.hpp"
-#include "fe/tet_frames3d.hpp"
+#include "fe/points_evaluation3d.hpp"
+#include "fe/affine_element_maps3d.hpp"
 
 namespace dlmfsi {
 
@@ -73,7 +73,7 @@ class PolynomialBasis3 {
   void fit(int k, double* coefficients);
   void check(int k);
   const Basis3& basis_;
-  TetFrames3 frames_;
+  AffineElementMaps3 frames_;
   int degree_, nm_ = 0, nc_;
   std::vector<int> functions_;
   std::vector<double> reference_;  // the shared fit

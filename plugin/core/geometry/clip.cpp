@@ -55,96 +55,56 @@ void filtered_sides(const Point e[3], const Point p[3], int side[3][3]) {
       if (side[j][i] == 0) side[j][i] = orient2d_exact(e[j], e[(j + 1) % 3], p[i]);
 }
 
-}  // namespace
-
-Piece clip(const Point a[3], const Point b[3]) {
-  unsigned beyond;
-  return clip(a, b, beyond);
-}
-
-Piece clip(const Point a[3], const Point b[3], unsigned& beyond) {
-  Rest rest;
-  return clip(a, b, beyond, rest);
-}
-
-Piece clip(const Point a[3], const Point b[3], unsigned& beyond, Rest& rest) {
-  Piece out;
-  rest.edge = -1;
-  beyond = 0;
-  // side_ab[j][i]: side of a[i] with respect to edge b[j] -> b[j+1]; side_ba[i][j] likewise.
-  int side_ab[3][3], side_ba[3][3];
-  filtered_sides(b, a, side_ab);
-  for (int j = 0; j < 3; ++j) {
-    bool separates = true;
-    for (int i = 0; i < 3; ++i) {
-      if (side_ab[j][i] > 0) separates = false;
-      if (side_ab[j][i] < 0) beyond |= 1u << j;
-    }
-    if (separates) return out;
-  }
-  // A whole triangle, from its lexicographically smallest vertex, so that the piece does not depend on
-  // which vertex a triangle lists first.
-  auto whole = [&out](const Point t[3]) {
-    const int first = lex_less(t[1], t[0]) ? (lex_less(t[2], t[1]) ? 2 : 1) : (lex_less(t[2], t[0]) ? 2 : 0);
-    out.n = 3;
-    for (int k = 0; k < 3; ++k) out.v[k] = t[(first + k) % 3];
-    return out;
-  };
-  if (beyond == 0) return whole(a);  // a in closed b
-  // a reaches beyond one edge line j of b only: a ∩ b = a ∩ (closed side of line j). With no vertex of a on
-  // that line and b's edge crossing a's two cut edges properly (exact signs), the piece is a's vertices on
-  // the inner side and the two crossings, as the general construction below would find them.
-  if ((beyond & (beyond - 1)) == 0) {
-    const int j = beyond == 1 ? 0 : (beyond == 2 ? 1 : 2), j1 = (j + 1) % 3;
-    const int* side = side_ab[j];
-    if (side[0] != 0 && side[1] != 0 && side[2] != 0) {
-      // With a's vertices strictly inside the other two edges' lines, a cut edge of a stays strictly inside
-      // them, so it meets line j strictly between b[j] and b[j1] (the line and those two open half-planes
-      // meet in the open edge): a proper crossing, without asking. Otherwise ask (a cut edge through a
-      // vertex of b).
-      const int *other = side_ab[j1], *other2 = side_ab[(j + 2) % 3];
-      bool proper = true;
-      if (!(other[0] > 0 && other[1] > 0 && other[2] > 0 && other2[0] > 0 && other2[1] > 0 && other2[2] > 0))
-        for (int i = 0; i < 3 && proper; ++i) {
-          const int i1 = (i + 1) % 3;
-          if (side[i] != side[i1])
-            proper = orient2d(a[i], a[i1], b[j]) * orient2d(a[i], a[i1], b[j1]) < 0;
-        }
-      if (proper) {
-        Piece& beyond_line = rest.piece;
-        beyond_line.n = 0;
-        rest.corners = 0;
-        for (int i = 0; i < 3; ++i) {
-          const int i1 = (i + 1) % 3;
-          if (side[i] > 0) {
-            out.v[out.n++] = a[i];
-          } else {
-            beyond_line.v[beyond_line.n++] = a[i];
-            rest.corners |= 1u << i;
-          }
-          if (side[i] != side[i1]) {
-            const Point x = crossing(a[i], a[i1], b[j], b[j1]);
-            out.v[out.n++] = x;
-            beyond_line.v[beyond_line.n++] = x;
-          }
-        }
-        rest.edge = j;
-        return out;
+// a reaches beyond one edge line j of b only: a ∩ b = a ∩ (closed side of line j). With no vertex of a on
+// that line and b's edge crossing a's two cut edges properly (exact signs), the piece is a's vertices on
+// the inner side and the two crossings, as polygon_of_corners would find them.
+// Returns false, leaving out and rest alone, when a vertex of a lies on the line or a cut edge of a passes
+// through a vertex of b: then polygon_of_corners decides.
+bool cut_by_one_line(const Point a[3], const Point b[3], const int side_ab[3][3], int j, Piece& out, Rest& rest) {
+  const int j1 = (j + 1) % 3;
+  const int* side = side_ab[j];
+  if (side[0] != 0 && side[1] != 0 && side[2] != 0) {
+    // With a's vertices strictly inside the other two edges' lines, a cut edge of a stays strictly inside
+    // them, so it meets line j strictly between b[j] and b[j1] (the line and those two open half-planes
+    // meet in the open edge): a proper crossing, without asking. Otherwise ask (a cut edge through a
+    // vertex of b).
+    const int *other = side_ab[j1], *other2 = side_ab[(j + 2) % 3];
+    bool proper = true;
+    if (!(other[0] > 0 && other[1] > 0 && other[2] > 0 && other2[0] > 0 && other2[1] > 0 && other2[2] > 0))
+      for (int i = 0; i < 3 && proper; ++i) {
+        const int i1 = (i + 1) % 3;
+        if (side[i] != side[i1])
+          proper = orient2d(a[i], a[i1], b[j]) * orient2d(a[i], a[i1], b[j1]) < 0;
       }
+    if (proper) {
+      Piece& beyond_line = rest.piece;
+      beyond_line.n = 0;
+      rest.corners = 0;
+      for (int i = 0; i < 3; ++i) {
+        const int i1 = (i + 1) % 3;
+        if (side[i] > 0) {
+          out.v[out.n++] = a[i];
+        } else {
+          beyond_line.v[beyond_line.n++] = a[i];
+          rest.corners |= 1u << i;
+        }
+        if (side[i] != side[i1]) {
+          const Point x = crossing(a[i], a[i1], b[j], b[j1]);
+          out.v[out.n++] = x;
+          beyond_line.v[beyond_line.n++] = x;
+        }
+      }
+      rest.edge = j;
+      return true;
     }
   }
-  bool b_inside = true;
-  filtered_sides(a, b, side_ba);
-  for (int i = 0; i < 3; ++i) {
-    bool separates = true;
-    for (int j = 0; j < 3; ++j) {
-      if (side_ba[i][j] > 0) separates = false;
-      if (side_ba[i][j] < 0) b_inside = false;
-    }
-    if (separates) return out;
-  }
-  if (b_inside) return whole(b);
+  return false;
+}
 
+// The convex polygon a ∩ b from the sides of each triangle's corners with respect to the other's edge lines,
+// when neither holds the other and no edge line separates them.
+void polygon_of_corners(const Point a[3], const Point b[3], const int side_ab[3][3], const int side_ba[3][3],
+                        Piece& out) {
   // The candidates are the corners of the convex polygon a ∩ b. With each goes the input edge along which
   // the polygon's boundary leaves it counter-clockwise (from, to): the corners are then ordered by the
   // directions of those edges, which increase around a convex polygon. Both the edge choice and the order
@@ -204,7 +164,7 @@ Piece clip(const Point a[3], const Point b[3], unsigned& beyond, Rest& rest) {
       }
     }
   }
-  if (n < 3) return out;  // cannot happen when the interiors meet; kept as a guard
+  if (n < 3) return;  // cannot happen when the interiors meet; kept as a guard
 
   // Order by the direction to - from: the half-turn [0, 180) degrees first, then [180, 360); within one,
   // by the exact sign of the cross product of the two directions.
@@ -223,6 +183,58 @@ Piece clip(const Point a[3], const Point b[3], unsigned& beyond, Rest& rest) {
     for (int m = k; m > 0 && before(order[m], order[m - 1]); --m) std::swap(order[m], order[m - 1]);
   out.n = std::min(n, Piece::kMaxVertices);
   for (int k = 0; k < out.n; ++k) out.v[k] = {cand[order[k]].x, cand[order[k]].y};
+}
+
+}  // namespace
+
+Piece clip(const Point a[3], const Point b[3]) {
+  unsigned beyond;
+  return clip(a, b, beyond);
+}
+
+Piece clip(const Point a[3], const Point b[3], unsigned& beyond) {
+  Rest rest;
+  return clip(a, b, beyond, rest);
+}
+
+Piece clip(const Point a[3], const Point b[3], unsigned& beyond, Rest& rest) {
+  Piece out;
+  rest.edge = -1;
+  beyond = 0;
+  // side_ab[j][i]: side of a[i] with respect to edge b[j] -> b[j+1]; side_ba[i][j] likewise.
+  int side_ab[3][3], side_ba[3][3];
+  filtered_sides(b, a, side_ab);
+  for (int j = 0; j < 3; ++j) {
+    bool separates = true;
+    for (int i = 0; i < 3; ++i) {
+      if (side_ab[j][i] > 0) separates = false;
+      if (side_ab[j][i] < 0) beyond |= 1u << j;
+    }
+    if (separates) return out;
+  }
+  // A whole triangle, from its lexicographically smallest vertex, so that the piece does not depend on
+  // which vertex a triangle lists first.
+  auto whole = [&out](const Point t[3]) {
+    const int first = lex_less(t[1], t[0]) ? (lex_less(t[2], t[1]) ? 2 : 1) : (lex_less(t[2], t[0]) ? 2 : 0);
+    out.n = 3;
+    for (int k = 0; k < 3; ++k) out.v[k] = t[(first + k) % 3];
+    return out;
+  };
+  if (beyond == 0) return whole(a);  // a in closed b
+  const int only_line = beyond == 1 ? 0 : (beyond == 2 ? 1 : (beyond == 4 ? 2 : -1));  // beyond one line only
+  if (only_line >= 0 && cut_by_one_line(a, b, side_ab, only_line, out, rest)) return out;
+  bool b_inside = true;
+  filtered_sides(a, b, side_ba);
+  for (int i = 0; i < 3; ++i) {
+    bool separates = true;
+    for (int j = 0; j < 3; ++j) {
+      if (side_ba[i][j] > 0) separates = false;
+      if (side_ba[i][j] < 0) b_inside = false;
+    }
+    if (separates) return out;
+  }
+  if (b_inside) return whole(b);
+  polygon_of_corners(a, b, side_ab, side_ba, out);
   return out;
 }
 

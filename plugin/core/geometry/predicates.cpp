@@ -16,4 +16,12 @@ int cross_sign_exact(Point p, Point q, Point r, Point s) {
   return exact_sign_of_sum(&f[0][0], 8, 2);
 }
 
+ScaledValue orient2d_value(Point a, Point b, Point c) {
+  // det [b - a, c - a] = ax by - ay bx + bx cy - by cx + cx ay - cy ax
+  const double f[6][2] = {{a.x, b.y}, {-a.y, b.x}, {b.x, c.y}, {-b.y, c.x}, {c.x, a.y}, {-c.y, a.x}};
+  ScaledValue v;
+  v.m = exact_sum(&f[0][0], 6, 2, v.e);
+  return v;
+}
+
 }  // namespace dlmfsi

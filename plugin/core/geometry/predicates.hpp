@@ -1,5 +1,6 @@
 // Exact geometric predicates.
 #pragma once
+#include <algorithm>
 #include <cmath>
 
 #include "point.hpp"
@@ -43,5 +44,29 @@ inline int cross_sign(Point p, Point q, Point r, Point s) {
   const int f = filtered_sign((q.x - p.x) * (s.y - r.y), (q.y - p.y) * (s.x - r.x));
   return f != 0 ? f : cross_sign_exact(p, q, r, s);
 }
+
+// A value as m 2^e (m = 0, or 0.5 <= |m| < 1): representable however far below the doubles it lies.
+struct ScaledValue {
+  double m = 0;
+  int e = 0;
+};
+
+// x and y as doubles in the units of the larger: m 2^(e - max(e_x, e_y)), so that their ratios are accurate
+// (the smaller may vanish against the larger: then it is below round-off of it; a zero has no exponent).
+inline void to_common_scale(ScaledValue x, ScaledValue y, double& sx, double& sy) {
+  const int e = x.m == 0 ? y.e : (y.m == 0 ? x.e : std::max(x.e, y.e));
+  sx = std::ldexp(x.m, x.e - e);
+  sy = std::ldexp(y.m, y.e - e);
+}
+
+// det [b - a, c - a] with the bound (3 + 16 eps) eps times the permanent plus 2^-1073 (each of the two
+// products loses at most 2^-1075 to underflow), and its exact value, rounded, as m 2^e (as orient3d_value's,
+// predicates3d.hpp): for points of a plane seen in a coordinate projection (clip3d.cpp).
+inline double orient2d_estimate(Point a, Point b, Point c, double& bound) {
+  const double l = (b.x - a.x) * (c.y - a.y), r = (b.y - a.y) * (c.x - a.x);
+  bound = 3.3306690738754716e-16 * (std::fabs(l) + std::fabs(r)) + 0x1p-1073;
+  return l - r;
+}
+ScaledValue orient2d_value(Point a, Point b, Point c);
 
 }  // namespace dlmfsi

@@ -62,12 +62,4 @@ ScaledValue orient3d_value(Point3 a, Point3 b, Point3 c, Point3 d) {
   return v;
 }
 
-ScaledValue orient2d_value(Point a, Point b, Point c) {
-  // det [b - a, c - a] = ax by - ay bx + bx cy - by cx + cx ay - cy ax
-  const double f[6][2] = {{a.x, b.y}, {-a.y, b.x}, {b.x, c.y}, {-b.y, c.x}, {c.x, a.y}, {-c.y, a.x}};
-  ScaledValue v;
-  v.m = exact_sum(&f[0][0], 6, 2, v.e);
-  return v;
-}
-
 }  // namespace dlmfsi

@@ -58,34 +58,10 @@ inline int orient3d_filter(Point3 a, Point3 b, Point3 c, Point3 d) {
   return 0;
 }
 
-// A value as m 2^e (m = 0, or 0.5 <= |m| < 1): representable however far below the doubles it lies.
-struct ScaledValue {
-  double m = 0;
-  int e = 0;
-};
-
 // det [b - a, c - a, d - a] exactly, rounded (a few ulps; 0 exactly when it is 0), as m 2^e: accurate for
 // determinants below the doubles too (subnormal coordinates, points one ulp apart), where a double would
 // keep few bits or none. For constructions whose floating-point evaluation cancels (a ratio of two).
 ScaledValue orient3d_value(Point3 a, Point3 b, Point3 c, Point3 d);
-
-// The 2D counterparts for points of a plane seen in a coordinate projection: det [b - a, c - a] with the
-// bound (3 + 16 eps) eps times the permanent plus 2^-1073 (each of the two products loses at most 2^-1075
-// to underflow), and its exact value (as orient3d_value's).
-inline double orient2d_estimate(Point a, Point b, Point c, double& bound) {
-  const double l = (b.x - a.x) * (c.y - a.y), r = (b.y - a.y) * (c.x - a.x);
-  bound = 3.3306690738754716e-16 * (std::fabs(l) + std::fabs(r)) + 0x1p-1073;
-  return l - r;
-}
-ScaledValue orient2d_value(Point a, Point b, Point c);
-
-// x and y as doubles in the units of the larger: m 2^(e - max(e_x, e_y)), so that their ratios are accurate
-// (the smaller may vanish against the larger: then it is below round-off of it; a zero has no exponent).
-inline void to_common_scale(ScaledValue x, ScaledValue y, double& sx, double& sy) {
-  const int e = x.m == 0 ? y.e : (y.m == 0 ? x.e : std::max(x.e, y.e));
-  sx = std::ldexp(x.m, x.e - e);
-  sy = std::ldexp(y.m, y.e - e);
-}
 
 inline int orient3d(Point3 a, Point3 b, Point3 c, Point3 d) {
   const int s = orient3d_filter(a, b, c, d);

@@ -6,7 +6,8 @@
 #include <string>
 #include <utility>
 
-#include "coupling/coupling.hpp"
+#include "sides/report.hpp"
+#include "sides/sides.hpp"
 #include "errors.hpp"
 #include "geometry/predicates.hpp"
 

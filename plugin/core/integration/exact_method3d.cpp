@@ -7,7 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "coupling/coupling3d.hpp"
+#include "sides/report.hpp"
+#include "sides/sides3d.hpp"
 #include "errors.hpp"
 #include "geometry/predicates3d.hpp"
 #include "geometry/red_refinement3d.hpp"
@@ -21,7 +22,7 @@ using Tet = std::array<Point3, 4>;
 
 ExactMethod3::ExactMethod3(const FluidSide3& fluid, FluidSearch3& search, int product_degree, int qforder,
                            int subdivide, std::unique_ptr<PieceIntegrator3> general,
-                           std::unique_ptr<PieceIntegrator3> affine, CouplingReport3& counts)
+                           std::unique_ptr<PieceIntegrator3> affine, CouplingReport& counts)
     : fluid_(fluid), search_(search), product_degree_(product_degree), qforder_(qforder), subdivide_(subdivide),
       general_(std::move(general)), affine_(std::move(affine)), counts_(counts) {}
 
@@ -72,7 +73,7 @@ double ExactMethod3::clip_or_split(const ClippedImage3& image, const Point3 xi[4
 
 // Where the map is not affine, the integrand in fluid coordinates, f(X^-1(y)) / det grad X, is smooth but
 // not polynomial; its error under a rule of degree p + q falls like (d/3)^q, d the map's nonlinearity (how
-// far grad X strays from the affine jacobian, map3d.hpp; measured on P1b maps, d = 0.05 to 0.4, where
+// far grad X strays from the affine jacobian, mapped_element3d.hpp; measured on P1b maps, d = 0.05 to 0.4, where
 // q = 14 gives 1e-12 at d = 0.37). So q = 12 / -log10(d/3), at most 26 (d <= 1: images of larger d are split,
 // clip_or_split), for an error about 1e-12 on planar images (a bubble map of d = 0.9 / 0.99: 3e-13 / 2e-13
 // with q = 23 / 26, against 5e-11 / 1.6e-10 with 16); on curved images, whose error is the band between the

@@ -23,7 +23,7 @@ class ExactMethod3 : public TetrahedronIntegrator {
   // given. qforder, subdivide: the options (-1 automatic).
   ExactMethod3(const FluidSide3& fluid, FluidSearch3& search, int product_degree, int qforder, int subdivide,
                std::unique_ptr<PieceIntegrator3> general, std::unique_ptr<PieceIntegrator3> affine,
-               CouplingReport3& counts);
+               CouplingReport& counts);
   double integrate(const MappedTet& mt, LocalBlock& block) override;
 
  private:
@@ -56,7 +56,7 @@ class ExactMethod3 : public TetrahedronIntegrator {
   int hint_ = 0;  // a fluid tetrahedron near the last image, where the search starts
   int product_degree_, qforder_, subdivide_;
   std::unique_ptr<PieceIntegrator3> general_, affine_;
-  CouplingReport3& counts_;
+  CouplingReport& counts_;
 };
 
 }  // namespace dlmfsi

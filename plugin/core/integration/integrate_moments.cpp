@@ -1,6 +1,7 @@
 #include "integration/integrate_moments.hpp"
 
-#include "coupling/coupling.hpp"
+#include "sides/report.hpp"
+#include "sides/sides.hpp"
 
 namespace dlmfsi {
 

@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "coupling/coupling3d.hpp"
+#include "sides/report.hpp"
+#include "sides/sides3d.hpp"
 
 namespace dlmfsi {
 
@@ -65,7 +66,7 @@ bool MomentIntegrator3::applies(const Integrand3& integrand) {
          static_cast<int>(multiplier.functions().size()) <= kMaxFunctions;
 }
 
-MomentIntegrator3::MomentIntegrator3(const Integrand3& integrand, CouplingReport3& counts)
+MomentIntegrator3::MomentIntegrator3(const Integrand3& integrand, CouplingReport& counts)
     : integrand_(integrand), counts_(counts), fluid_functions_(static_cast<int>(integrand.fluid.functions().size())),
       multiplier_functions_(static_cast<int>(integrand.multiplier.functions().size())) {}
 

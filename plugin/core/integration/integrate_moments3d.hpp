@@ -17,12 +17,12 @@ class MomentIntegrator3 : public PieceIntegrator3 {
   // Can it integrate these bases (on affine images)?
   static bool applies(const Integrand3& integrand);
 
-  MomentIntegrator3(const Integrand3& integrand, CouplingReport3& counts);
+  MomentIntegrator3(const Integrand3& integrand, CouplingReport& counts);
   double integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) override;
 
  private:
   const Integrand3& integrand_;
-  CouplingReport3& counts_;
+  CouplingReport& counts_;
   int fluid_functions_, multiplier_functions_;
 };
 

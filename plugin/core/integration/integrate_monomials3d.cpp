@@ -2,7 +2,8 @@
 
 #include <cmath>
 
-#include "coupling/coupling3d.hpp"
+#include "sides/report.hpp"
+#include "sides/sides3d.hpp"
 #include "fe/rules.hpp"
 
 namespace dlmfsi {
@@ -13,7 +14,7 @@ bool MonomialIntegrator3::applies(const Integrand3& integrand) {
          multiplier.degree() <= 1 && (integrand.chain || integrand.c1 == 0);
 }
 
-MonomialIntegrator3::MonomialIntegrator3(const Integrand3& integrand, CouplingReport3& counts)
+MonomialIntegrator3::MonomialIntegrator3(const Integrand3& integrand, CouplingReport& counts)
     : integrand_(integrand), counts_(counts), points_(integrand, counts),
       fluid_functions_(static_cast<int>(integrand.fluid.functions().size())),
       multiplier_functions_(static_cast<int>(integrand.multiplier.functions().size())),

@@ -24,12 +24,12 @@ class MonomialIntegrator3 : public PieceIntegrator3 {
   // Can it integrate these bases (on affine images)?
   static bool applies(const Integrand3& integrand);
 
-  MonomialIntegrator3(const Integrand3& integrand, CouplingReport3& counts);
+  MonomialIntegrator3(const Integrand3& integrand, CouplingReport& counts);
   double integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) override;
 
  private:
   const Integrand3& integrand_;
-  CouplingReport3& counts_;
+  CouplingReport& counts_;
   PointIntegrator3 points_;  // for fluid elements with their own fits
   int fluid_functions_, multiplier_functions_;
   // Per piece: the rule's points (eta) and weights (dy), the moments, and per function the sums.

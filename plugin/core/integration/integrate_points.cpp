@@ -2,7 +2,8 @@
 
 #include <string>
 
-#include "coupling/coupling.hpp"
+#include "sides/report.hpp"
+#include "sides/sides.hpp"
 #include "errors.hpp"
 #include "fe/rules.hpp"
 

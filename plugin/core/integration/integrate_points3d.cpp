@@ -4,7 +4,8 @@
 #include <cmath>
 #include <string>
 
-#include "coupling/coupling3d.hpp"
+#include "sides/report.hpp"
+#include "sides/sides3d.hpp"
 #include "errors.hpp"
 #include "geometry/predicates3d.hpp"
 #include "map/pull_back3d.hpp"
@@ -13,7 +14,7 @@
 
 namespace dlmfsi {
 
-PointIntegrator3::PointIntegrator3(const Integrand3& integrand, CouplingReport3& counts)
+PointIntegrator3::PointIntegrator3(const Integrand3& integrand, CouplingReport& counts)
     : integrand_(integrand), counts_(counts), fluid_functions_(static_cast<int>(integrand.fluid.functions().size())),
       gradients_(integrand.c1 != 0), listing_(integrand.c1 != 0 && !integrand.chain),
       constant_multiplier_gradients_(gradients_ && !listing_ && integrand.multiplier.fitted() &&

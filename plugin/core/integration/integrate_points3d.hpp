@@ -19,7 +19,7 @@ namespace dlmfsi {
 
 class PointIntegrator3 : public PieceIntegrator3 {
  public:
-  PointIntegrator3(const Integrand3& integrand, CouplingReport3& counts);
+  PointIntegrator3(const Integrand3& integrand, CouplingReport& counts);
   double integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) override;
 
   // A point of the solid tetrahedron whose image lies in fluid tetrahedron kf: reference coordinates in kf
@@ -52,7 +52,7 @@ class PointIntegrator3 : public PieceIntegrator3 {
   void add_listing(const MappedTet& mt, int n, LocalBlock& block);
 
   const Integrand3& integrand_;
-  CouplingReport3& counts_;
+  CouplingReport& counts_;
   int fluid_functions_;
   bool gradients_, listing_;  // c1 != 0; and the listings' product
   // The chain rule with a multiplier fitted at degree 0 or 1 (gradients constant on a tetrahedron): weigh

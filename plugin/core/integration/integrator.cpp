@@ -3,30 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "integration/exact_method.hpp"
-#include "integration/integrate_batch.hpp"
-#include "integration/integrate_moments.hpp"
-#include "integration/integrate_points.hpp"
-#include "integration/quadrature_method.hpp"
-
 namespace dlmfsi {
-
-std::unique_ptr<TriangleIntegrator> choose_integrator(const Integrand& integrand, const FluidSide& fluid,
-                                                      FluidSearch& search, const SolidMap& map,
-                                                      const CouplingOptions& options, CouplingReport& counts) {
-  if (options.method == CouplingOptions::Method::Quadrature)
-    return std::make_unique<QuadratureMethod>(fluid, search, integrand, map.degree(), options.qforder, options.tol,
-                                              counts);
-  const bool batch = integrand.fluid.fitted() && integrand.multiplier.fitted() && (integrand.chain || integrand.c1 == 0);
-  std::unique_ptr<PieceIntegrator> general, affine;
-  if (batch)
-    general = std::make_unique<BatchIntegrator>(integrand, counts);
-  else
-    general = std::make_unique<PointIntegrator>(integrand, counts);
-  if (batch && MomentIntegrator::applies(integrand)) affine = std::make_unique<MomentIntegrator>(integrand, counts);
-  return std::make_unique<ExactMethod>(fluid, search, integrand.product_degree, options.qforder, options.subdivide,
-                                       std::move(general), std::move(affine), counts);
-}
 
 int nonlinear_rule_degree(int product_degree, double nonlinearity) {
   const double d = std::min(std::max(nonlinearity, 1e-300), kLeafNonlinearity);

@@ -8,10 +8,12 @@
 // the quadrature method (quadrature_method.hpp) applies a composite rule on T. The piece integrators:
 // point by point through either basis (integrate_points.hpp), in batches over fitted bases
 // (integrate_batch.hpp), and from a piece's moments for bases of degree <= 1 (integrate_moments.hpp).
-// choose_integrator picks them, once per call and thread.
+// choose_integrator (choose_integrator.hpp) picks them, once per call and thread.
 //
-// The interfaces are templates on the mapped element and its piece so that a tetrahedral assembly can use
-// them as they are: integrator3d.hpp (PieceIntegratorOf<ClippedImage3, Piece3>, with the same LocalBlock).
+// IntegrandOf and ElementIntegratorOf are templates on the dimension's spaces and mapped element, shared by
+// the tetrahedral assembly (integrator3d.hpp: Integrand3, TetrahedronIntegrator, with the same LocalBlock);
+// its piece integrators (PieceIntegrator3) also return each piece's volume, so they have an interface of
+// their own.
 #pragma once
 #include <memory>
 
@@ -19,7 +21,7 @@
 #include "fe/component_pairs.hpp"
 #include "mesh/fluid_search.hpp"
 #include "integration/local_block.hpp"
-#include "map/mapped_triangle.hpp"
+#include "map/mapped_element.hpp"
 #include "sides/options.hpp"
 #include "fe/polynomial_basis.hpp"
 #include "map/split.hpp"
@@ -68,13 +70,11 @@ struct ClippedImage {
 
 // Adds the integrand over one piece (image ∩ fluid element kf) to the block; the caller has entered fluid
 // element kf in the block.
-template <class Image, class PieceType>
-class PieceIntegratorOf {
+class PieceIntegrator {
  public:
-  virtual ~PieceIntegratorOf() = default;
-  virtual void integrate(const Image& image, int kf, const PieceType& piece, LocalBlock& block) = 0;
+  virtual ~PieceIntegrator() = default;
+  virtual void integrate(const ClippedImage& image, int kf, const Piece& piece, LocalBlock& block) = 0;
 };
-using PieceIntegrator = PieceIntegratorOf<ClippedImage, Piece>;
 
 // Adds the integrand over one mapped solid element to the block (started by the caller on that element);
 // returns the area (volume) of its image outside the fluid mesh, >= 0 up to round-off.
@@ -85,17 +85,6 @@ class ElementIntegratorOf {
   virtual double integrate(const MappedElement& element, LocalBlock& block) = 0;
 };
 using TriangleIntegrator = ElementIntegratorOf<MappedTriangle>;
-
-// The selection, in one place: the quadrature method or the exact one, and for the exact one the piece
-// integrators for affine images and for the others:
-//   not both bases fitted, or the listings' product         -> point by point
-//   both fitted, the chain rule (or c1 = 0)                  -> batches
-//   ... and both of degree <= 1, on affine images            -> moments
-// search: the calling thread's search on the fluid side; counts: its report, which the integrators count
-// pieces, points and rule degrees in.
-std::unique_ptr<TriangleIntegrator> choose_integrator(const Integrand& integrand, const FluidSide& fluid,
-                                                      FluidSearch& search, const SolidMap& map,
-                                                      const CouplingOptions& options, CouplingReport& counts);
 
 // Images of triangles whose nonlinearity (map_shape.hpp) is above this are split into parts on which it is at
 // most this (split.hpp), where nonlinear_rule_degree gives a rule of degree p + 20.

@@ -1,11 +1,5 @@
 #include "integration/integrator3d.hpp"
 
-#include "coupling/coupling3d.hpp"
-#include "integration/exact_method3d.hpp"
-#include "integration/integrate_moments3d.hpp"
-#include "integration/integrate_monomials3d.hpp"
-#include "integration/integrate_points3d.hpp"
-#include "integration/quadrature_method3d.hpp"
 
 namespace dlmfsi {
 
@@ -16,19 +10,6 @@ Point3 ClippedImage3::guess(Point3 y) const {
   const double det = dot(e1, cross(e2, e3));
   const double l1 = dot(r, cross(e2, e3)) / det, l2 = dot(e1, cross(r, e3)) / det, l3 = dot(e1, cross(e2, r)) / det;
   return sub_xi[0] + (l1 * (sub_xi[1] - sub_xi[0]) + l2 * (sub_xi[2] - sub_xi[0]) + l3 * (sub_xi[3] - sub_xi[0]));
-}
-
-std::unique_ptr<TetrahedronIntegrator> choose_integrator(const Integrand3& integrand, const FluidSide3& fluid,
-                                                         FluidSearch3& search, const CouplingOptions& options,
-                                                         CouplingReport3& counts) {
-  if (options.method == CouplingOptions::Method::Quadrature)
-    return std::make_unique<QuadratureMethod3>(fluid, search, integrand, options.qforder, options.subdivide, counts);
-  std::unique_ptr<PieceIntegrator3> affine;
-  if (MomentIntegrator3::applies(integrand)) affine = std::make_unique<MomentIntegrator3>(integrand, counts);
-  else if (MonomialIntegrator3::applies(integrand)) affine = std::make_unique<MonomialIntegrator3>(integrand, counts);
-  return std::make_unique<ExactMethod3>(fluid, search, integrand.product_degree, options.qforder, options.subdivide,
-                                        std::make_unique<PointIntegrator3>(integrand, counts), std::move(affine),
-                                        counts);
 }
 
 }  // namespace dlmfsi

@@ -14,13 +14,13 @@
 #include "geometry/clip3d.hpp"
 #include "mesh/fluid_search3d.hpp"
 #include "integration/integrator.hpp"
-#include "map/map3d.hpp"
+#include "map/mapped_element3d.hpp"
 #include "fe/polynomial_basis3d.hpp"
 
 namespace dlmfsi {
 
 class FluidSide3;
-struct CouplingReport3;
+struct CouplingReport;
 
 using Integrand3 = IntegrandOf<Basis3, PolynomialBasis3>;
 
@@ -47,14 +47,5 @@ class PieceIntegrator3 {
   virtual double integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) = 0;
 };
 using TetrahedronIntegrator = ElementIntegratorOf<MappedTet>;
-
-// The quadrature method (quadrature_method3d.hpp) when the options ask for it; otherwise the exact method
-// with, for every piece, the point-by-point integrator and, for the pieces of affine images where both bases
-// are fitted and the product is the chain rule's (or c1 = 0), the moments when both are of degree <= 1, the
-// monomial moments when the fluid's is higher and the multiplier's <= 1. search: the calling thread's search
-// on the fluid side; counts: its report.
-std::unique_ptr<TetrahedronIntegrator> choose_integrator(const Integrand3& integrand, const FluidSide3& fluid,
-                                                         FluidSearch3& search, const CouplingOptions& options,
-                                                         CouplingReport3& counts);
 
 }  // namespace dlmfsi

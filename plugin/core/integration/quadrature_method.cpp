@@ -4,7 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "coupling/coupling.hpp"
+#include "sides/report.hpp"
+#include "sides/sides.hpp"
 #include "geometry/predicates.hpp"
 #include "fe/rules.hpp"
 

@@ -4,7 +4,8 @@
 #include <cmath>
 #include <string>
 
-#include "coupling/coupling3d.hpp"
+#include "sides/report.hpp"
+#include "sides/sides3d.hpp"
 #include "errors.hpp"
 #include "geometry/predicates3d.hpp"
 #include "geometry/red_refinement3d.hpp"
@@ -13,7 +14,7 @@
 namespace dlmfsi {
 
 QuadratureMethod3::QuadratureMethod3(const FluidSide3& fluid, FluidSearch3& search, const Integrand3& integrand,
-                                     int qforder, int subdivide, CouplingReport3& counts)
+                                     int qforder, int subdivide, CouplingReport& counts)
     : fluid_(fluid), search_(search), integrand_(integrand), qforder_(qforder), subdivide_(std::max(0, subdivide)),
       points_(integrand, counts), counts_(counts) {}
 

@@ -20,7 +20,7 @@ class QuadratureMethod3 : public TetrahedronIntegrator {
  public:
   // search: on fluid's grid; qforder, subdivide: the options (-1: automatic, and 0 subdivisions).
   QuadratureMethod3(const FluidSide3& fluid, FluidSearch3& search, const Integrand3& integrand, int qforder,
-                    int subdivide, CouplingReport3& counts);
+                    int subdivide, CouplingReport& counts);
   double integrate(const MappedTet& mt, LocalBlock& block) override;
 
  private:
@@ -39,7 +39,7 @@ class QuadratureMethod3 : public TetrahedronIntegrator {
   int hint_ = 0;
   int qforder_, subdivide_;
   PointIntegrator3 points_;
-  CouplingReport3& counts_;
+  CouplingReport& counts_;
   std::vector<Located> located_;
   std::vector<PointIntegrator3::PointData> group_;
 };

@@ -10,7 +10,7 @@
 #include "fe/lattice.hpp"
 #include "parallel/on_threads.hpp"
 #include "fe/polynomial_fit.hpp"
-#include "map/triangle_map.hpp"
+#include "map/element_map.hpp"
 
 namespace dlmfsi {
 

@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "fe/basis.hpp"
-#include "map/map.hpp"
+#include "map/solid_map.hpp"
 #include "mesh/mesh.hpp"
 #include "fe/polynomial_basis.hpp"
 

@@ -14,7 +14,7 @@
 #include <functional>
 
 #include "point.hpp"
-#include "map/triangle_map.hpp"
+#include "map/element_map.hpp"
 
 namespace dlmfsi {
 

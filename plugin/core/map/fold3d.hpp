@@ -17,6 +17,7 @@
 #pragma once
 #include <functional>
 
+#include "map/element_map3d.hpp"
 #include "map/fold.hpp"
 #include "point3.hpp"
 
@@ -38,5 +39,17 @@ JacobianSign jacobian_sign3(const std::function<DetSample(Point3)>& det, int n, 
 // kappa for degree n (above): how much the conversion from lattice values to Bernstein coefficients can
 // amplify the values' round-off.
 double bernstein_amplification3(int n);
+
+// The certification's limits: 10 levels of red refinement (det within about 4^-10 of zero, relative, is a
+// near fold) and 4096 sub-tetrahedra tested per solid tetrahedron.
+constexpr int kFoldDepth = 10;
+constexpr int kFoldTetrahedra = 4096;
+
+// det dX/dxi of the fitted polynomial of map at xi (mt.fitted_degree() >= 1) and a bound on its round-off.
+DetSample jacobian_det(const TetrahedronMap& mt, Point3 xi);
+
+// Throws Error naming the tetrahedron when det dX/dxi is not positive somewhere on it ("folds": at a
+// reference point given in the message) or comes within the limits above of zero ("nearly folds").
+void check_fold(const TetrahedronMap& mt);
 
 }  // namespace dlmfsi

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "map/triangle_map.hpp"
+#include "map/element_map.hpp"
 
 namespace dlmfsi {
 

@@ -3,7 +3,7 @@
 #include <array>
 #include <vector>
 
-#include "map/triangle_map.hpp"
+#include "map/element_map.hpp"
 
 namespace dlmfsi {
 

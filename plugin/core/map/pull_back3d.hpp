@@ -1,6 +1,6 @@
 // Newton's pull-back of a point of a tetrahedron's image to the tetrahedron's reference coordinates.
 #pragma once
-#include "map/map3d.hpp"
+#include "map/mapped_element3d.hpp"
 
 namespace dlmfsi {
 

@@ -20,7 +20,7 @@
 #pragma once
 #include <vector>
 
-#include "map/mapped_triangle.hpp"
+#include "map/mapped_element.hpp"
 
 namespace dlmfsi {
 

@@ -11,7 +11,7 @@
 #pragma once
 #include <vector>
 
-#include "map/map3d.hpp"
+#include "map/mapped_element3d.hpp"
 
 namespace dlmfsi {
 

@@ -12,7 +12,7 @@
 #include <cmath>
 
 #include "fe/basis.hpp"
-#include "map/map.hpp"
+#include "map/solid_map.hpp"
 #include "mesh/mesh.hpp"
 
 namespace dlmfsi {

@@ -1,4 +1,4 @@
-#include "map/mapped_triangle.hpp"
+#include "map/mapped_element.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,8 +1,8 @@
-#include "fe/tet_frames3d.hpp"
+#include "fe/affine_element_maps3d.hpp"
 
 namespace dlmfsi {
 
-TetFrames3::TetFrames3(const Mesh3& mesh) : mesh_(mesh) {
+AffineElementMaps3::AffineElementMaps3(const Mesh3& mesh) : mesh_(mesh) {
   inverse_jacobian_.resize(9 * static_cast<size_t>(mesh.size()));
   for (int k = 0; k < mesh.size(); ++k) {
     // x = p0 + E xi with E = [e1 e2 e3]: E^-1 has rows (e2 x e3, e3 x e1, e1 x e2) / det E

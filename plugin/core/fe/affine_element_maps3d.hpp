@@ -8,9 +8,9 @@
 
 namespace dlmfsi {
 
-class TetFrames3 {
+class AffineElementMaps3 {
  public:
-  explicit TetFrames3(const Mesh3& mesh);
+  explicit AffineElementMaps3(const Mesh3& mesh);
   // The reference coordinates of x in element k.
   Point3 to_reference(int k, Point3 x) const {
     const double* j = &inverse_jacobian_[9 * static_cast<size_t>(k)];

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "fe/lattice.hpp"
-#include "map/map.hpp"
+#include "map/solid_map.hpp"
 #include "mesh/mesh.hpp"
 #include "map/polynomial_map.hpp"
 

@@ -1,11 +1,11 @@
 // One solid triangle under the map X: the images of its corners, how its image may be handled (affine,
 // straight edges, curved) and the pull-back of points of the image.
 #pragma once
-#include "map/map.hpp"
+#include "map/solid_map.hpp"
 #include "map/map_shape.hpp"
 #include "mesh/mesh.hpp"
 #include "map/pull_back.hpp"
-#include "map/triangle_map.hpp"
+#include "map/element_map.hpp"
 
 namespace dlmfsi {
 

@@ -1,4 +1,4 @@
-#include "fe/polynomial_values3d.hpp"
+#include "fe/points_evaluation3d.hpp"
 
 #include <algorithm>
 #include <vector>

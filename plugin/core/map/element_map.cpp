@@ -1,4 +1,4 @@
-#include "map/triangle_map.hpp"
+#include "map/element_map.hpp"
 
 #include <cmath>
 #include <cstdio>

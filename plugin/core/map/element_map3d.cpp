@@ -1,0 +1,106 @@
+#include "map/element_map3d.hpp"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "errors.hpp"
+#include "fe/matrix_inverse.hpp"
+#include "geometry/predicates3d.hpp"
+
+namespace dlmfsi {
+
+namespace {
+
+std::string name(int k) { return "solid tetrahedron " + std::to_string(k); }
+
+}  // namespace
+
+void TetrahedronMap::polynomial(Point3 xi, Point3& x, Point3 d[3]) const {
+  const int nm = monomial_count3(degree_);
+  double v[monomial_count3(kMaxDegree)];
+  monomial_values3(degree_, xi, v);
+  double s[3] = {0, 0, 0}, g[3][3] = {};
+  const auto& derivative = monomial_derivatives3(degree_);
+  for (int m = 0; m < nm; ++m) {
+    for (int a = 0; a < 3; ++a) s[a] += c_[a][m] * v[m];
+    for (int i = 0; i < 3; ++i) {
+      // d/dxi_i of monomial m: factor times monomial j of degree - 1, the first ones of v
+      const int j = derivative[m].index[i];
+      if (j < 0) continue;
+      const double dm = derivative[m].factor[i] * v[j];
+      for (int a = 0; a < 3; ++a) g[i][a] += c_[a][m] * dm;
+    }
+  }
+  x = {s[0], s[1], s[2]};
+  for (int i = 0; i < 3; ++i) d[i] = {g[i][0], g[i][1], g[i][2]};
+}
+
+void TetrahedronMap::set_jacobian(const Point3 d[3], MapValue3& v) const {
+  // dX_a/ds_b = sum_i dX_a/dxi_i dxi_i/ds_b
+  const double dx[3][3] = {{d[0].x, d[1].x, d[2].x}, {d[0].y, d[1].y, d[2].y}, {d[0].z, d[1].z, d[2].z}};
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) v.jac[a][b] = dx[a][0] * inv_[0][b] + dx[a][1] * inv_[1][b] + dx[a][2] * inv_[2][b];
+}
+
+void TetrahedronMap::reference_derivatives(Point3 xi, Point3& x, Point3 d[3]) const {
+  if (degree_ >= 1) {
+    polynomial(xi, x, d);
+    return;
+  }
+  // dX/dxi_i = dX/ds e_i
+  const MapValue3 v = map_->evaluate(k, xi);
+  x = v.x;
+  const Point3 e[3] = {solid[1] - solid[0], solid[2] - solid[0], solid[3] - solid[0]};
+  for (int i = 0; i < 3; ++i)
+    d[i] = {v.jac[0][0] * e[i].x + v.jac[0][1] * e[i].y + v.jac[0][2] * e[i].z,
+            v.jac[1][0] * e[i].x + v.jac[1][1] * e[i].y + v.jac[1][2] * e[i].z,
+            v.jac[2][0] * e[i].x + v.jac[2][1] * e[i].y + v.jac[2][2] * e[i].z};
+}
+
+MapValue3 TetrahedronMap::at(Point3 xi) const {
+  if (degree_ < 1) return map_->evaluate(k, xi);
+  MapValue3 v;
+  Point3 d[3];
+  polynomial(xi, v.x, d);
+  set_jacobian(d, v);
+  return v;
+}
+
+void TetrahedronMap::fit(const Mesh3& solid_mesh, const SolidMap3& map, int kk) {
+  k = kk;
+  map_ = &map;
+  solid_mesh.corners(k, solid);
+  const Point3 e1 = solid[1] - solid[0], e2 = solid[2] - solid[0], e3 = solid[3] - solid[0];
+  if (orient3d(solid[0], solid[1], solid[2], solid[3]) <= 0)
+    throw Error(name(k) + " is flat or negatively oriented in the solid mesh");
+  const double det = dot(e1, cross(e2, e3));
+  check_tetrahedron_size(det, name(k), "solid");
+  inverse_of_columns(e1, e2, e3, inv_);
+
+  degree_ = map.degree();
+  if (degree_ > kMaxDegree) degree_ = -1;
+  if (degree_ >= 1) {
+    const int n = monomial_count3(degree_);
+    if (!map.coefficients(k, c_[0], c_[1], c_[2])) {
+      std::vector<double> values(3 * static_cast<size_t>(n));
+      for (int p = 0; p < n; ++p) {
+        const Point3 x = map.evaluate(k, lattice_point3(degree_, p)).x;
+        values[p] = x.x;
+        values[n + p] = x.y;
+        values[2 * n + p] = x.z;
+      }
+      const auto& inv = vandermonde_inverse3(degree_);
+      for (int a = 0; a < 3; ++a)
+        for (int m = 0; m < n; ++m) {
+          c_[a][m] = 0;
+          for (int p = 0; p < n; ++p) c_[a][m] += inv[static_cast<size_t>(m) * n + p] * values[a * n + p];
+        }
+    }
+    for (int a = 0; a < 3; ++a)
+      for (int m = 0; m < n; ++m)
+        if (!std::isfinite(c_[a][m])) throw Error("the map is NaN or Inf in " + name(k));
+  }
+}
+
+}  // namespace dlmfsi

@@ -1,0 +1,45 @@
+// X on one solid tetrahedron, in the tetrahedron's reference coordinates xi: s = s0 + xi1 e1 + xi2 e2 + xi3 e3
+// with e_i = s_i - s0 (the counterpart of element_map.hpp's TriangleMap).
+#pragma once
+#include "fe/lattice3d.hpp"
+#include "map/solid_map3d.hpp"
+#include "mesh/mesh3d.hpp"
+
+namespace dlmfsi {
+
+// When the map's degree d is known (1 to kMaxDegree), X is fitted once on the tetrahedron's degree-d lattice
+// (exact for a polynomial map) and then evaluated as that polynomial; otherwise every evaluation goes to the map.
+class TetrahedronMap {
+ public:
+  static constexpr int kMaxDegree = kMaxMapDegree3;
+  int k = -1;
+  Point3 solid[4];  // corners in the reference configuration
+
+  // Takes solid tetrahedron k of the mesh and fits X on it. Throws Error naming the tetrahedron when it is
+  // flat or negatively oriented, outside the supported sizes, or when the fitted coefficients are NaN or Inf.
+  void fit(const Mesh3& solid_mesh, const SolidMap3& map, int k);
+
+  // X and its jacobian (with respect to s) at reference point xi.
+  MapValue3 at(Point3 xi) const;
+  // v.jac = dX/ds from the reference-coordinate derivatives d[i] = dX/dxi_i: dX/dxi (ds/dxi)^-1.
+  void set_jacobian(const Point3 d[3], MapValue3& v) const;
+  // The degree of the polynomial fitted to X (1 to kMaxDegree), or -1 when X is evaluated itself.
+  int fitted_degree() const { return degree_; }
+  // The monomial coefficients (lattice3d.hpp order) of component a of the fitted polynomial.
+  const double* coefficients(int a) const { return c_[a]; }
+  // X and its reference-coordinate derivatives d[i] = dX/dxi_i at xi (of the fitted polynomial, or of the
+  // map itself when its degree is unknown).
+  void reference_derivatives(Point3 xi, Point3& x, Point3 d[3]) const;
+
+ protected:
+  const SolidMap3* map_ = nullptr;
+  int degree_ = -1;
+  double c_[3][monomial_count3(kMaxDegree)];  // monomial coefficients of X, Y, Z
+
+ private:
+  // value and reference-coordinate derivatives d[i] = dX/dxi_i of the fitted polynomial
+  void polynomial(Point3 xi, Point3& x, Point3 d[3]) const;
+  double inv_[3][3];  // d xi / d s
+};
+
+}  // namespace dlmfsi
