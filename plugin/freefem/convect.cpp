@@ -26,10 +26,8 @@
 #include "adapter.hpp"
 #include "transfer/characteristics.hpp"
 #include "errors.hpp"
+#include "units.hpp"
 
-void dlmfsi_register_convect();
-// dlmfsi.cpp: the kept sides, slot 0 the field's, slot 1 a velocity space's of its own
-const dlmfsi::FluidSide& dlmfsi_convect_side(const FESpace& vh, const std::vector<int>& components, int slot);
 
 namespace {
 

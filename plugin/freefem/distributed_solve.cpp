@@ -62,7 +62,7 @@
 #include "adapter.hpp"
 #include "fill_ordering.hpp"
 #include "matrix_triplets.hpp"
-#include "share_sum.hpp"
+#include "units.hpp"
 
 namespace {
 
@@ -499,7 +499,7 @@ static void Load_Init() {
   Global.Add("dlmfsisolve", "(", new OneOperatorCode<SolveOp>);
   Global.Add("dlmfsisolvestats", "(", new OneOperator2_<long, long, KN<double>*>(solve_stats));
   Global.Add("dlmfsisolvefree", "(", new OneOperator1_<long, long>(solve_free));
-  dlmfsi_ff::add_share_sum();
+  dlmfsi_register_share_sum();
   ff_atend(release_all);   // before FreeFem++-mpi finalizes MPI
 }
 

@@ -23,6 +23,7 @@
 #include "ranks.hpp"
 #include "side_cache.hpp"
 #include "space_basis.hpp"
+#include "units.hpp"
 #include "sides/validation.hpp"
 
 namespace {
@@ -289,12 +290,6 @@ class LastErrorOp : public E_F0mps {
 };
 
 }  // namespace
-
-void dlmfsi_register_supermesh();  // plugin/freefem/supermesh.cpp
-void dlmfsi_register_3d();         // plugin/freefem/dlmfsi3d.cpp
-void dlmfsi_register_convect();    // plugin/freefem/convect.cpp
-void dlmfsi_register_matrix_sort();  // plugin/freefem/matrix_sort.cpp
-void dlmfsi_register_patch_matrix(); // plugin/freefem/patch_matrix.cpp
 
 static void Load_Init() {
   Global.Add("dlmfsi", "(", new OneOperatorCode<DlmfsiOp>);

@@ -21,6 +21,7 @@
 #include "errors.hpp"
 #include "side_cache.hpp"
 #include "space_basis.hpp"
+#include "units.hpp"
 
 namespace {
 

@@ -15,8 +15,7 @@
 #include "adapter.hpp"
 #include "errors.hpp"
 #include "sparse/row_order.hpp"
-
-void dlmfsi_register_matrix_sort();
+#include "units.hpp"
 
 namespace {
 

@@ -17,8 +17,7 @@
 #include "errors.hpp"
 #include "matrix_triplets.hpp"
 #include "sparse/sparse.hpp"
-
-void dlmfsi_register_patch_matrix();
+#include "units.hpp"
 
 namespace {
 

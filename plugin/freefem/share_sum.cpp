@@ -24,7 +24,7 @@
 
 #include "adapter.hpp"
 #include "matrix_triplets.hpp"
-#include "share_sum.hpp"
+#include "units.hpp"
 #include "sparse/sparse.hpp"
 
 namespace {
@@ -119,8 +119,4 @@ AnyType SumOp::operator()(Stack stack) const {
 
 }  // namespace
 
-namespace dlmfsi_ff {
-
-void add_share_sum() { Global.Add("dlmfsisum", "(", new OneOperatorCode<SumOp>); }
-
-}  // namespace dlmfsi_ff
+void dlmfsi_register_share_sum() { Global.Add("dlmfsisum", "(", new OneOperatorCode<SumOp>); }

@@ -20,8 +20,7 @@
 #include "adapter.hpp"
 #include "errors.hpp"
 #include "transfer/supermesh.hpp"
-
-void dlmfsi_register_supermesh();
+#include "units.hpp"
 
 namespace {
 
