@@ -11,7 +11,7 @@
 // components field=[0,1] of fo[] (by default the velocity's), each tested with the same component of Zh. In
 // the second form the velocity has a space Uh of its own on Ph's mesh (field= default: all of Ph's). b is
 // overwritten (resized to the field space's ndof), without boundary conditions: put the Dirichlet rows in as
-// for any linear form. The walk is FreeFEM's (plugin/core/characteristics.hpp); the rule is of degree
+// for any linear form. The walk is FreeFEM's (plugin/core/transfer/characteristics.hpp); the rule is of degree
 // qforder=5 (qf5pT, int2d's default). Returns the number of quadrature points whose walk the boundary stopped.
 // Registered by dlmfsi_register_convect(), called from dlmfsi.cpp's Load_Init.
 #include "ff++.hpp"

@@ -7,7 +7,7 @@
 //
 // FreeFEM keeps a matrix's entries in the order they were made and sorts them all by (row, column) with a
 // heap sort when a solver or an extraction needs rows (HashMatrix::Sortij): about 5 ms for 60,000 entries.
-// The sort here (plugin/core/row_order.hpp: by row, then by column within each row) takes a tenth of that
+// The sort here (plugin/core/sparse/row_order.hpp: by row, then by column within each row) takes a tenth of that
 // and leaves the matrix marked sorted, as FreeFEM's own does. Returns the number of entries. Registered by
 // dlmfsi_register_matrix_sort(), called from dlmfsi.cpp's Load_Init.
 #include "ff++.hpp"

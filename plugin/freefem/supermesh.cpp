@@ -6,7 +6,7 @@
 //   mesh Thi = dlmfsisupermesh(ThA, ThB, pa, pb, map=[X, Y]);      // A moved by the map (affine per triangle)
 //
 // Every triangle of Thi lies in one triangle of ThA (pa) and one of ThB (pb); the pieces A_k ∩ B_l are
-// fan-triangulated (see plugin/core/supermesh.hpp). Region labels come from ThA's triangles; boundary
+// fan-triangulated (see plugin/core/transfer/supermesh.hpp). Region labels come from ThA's triangles; boundary
 // labels from the boundary edge of ThA (else of ThB) that the edge lies on, 0 on neither.
 // Registered by dlmfsi_register_supermesh(), called from dlmfsi.cpp's Load_Init.
 #include "ff++.hpp"

@@ -1,4 +1,4 @@
-// The characteristics' right-hand side (plugin/core/characteristics.hpp) against independent references: a
+// The characteristics' right-hand side (plugin/core/transfer/characteristics.hpp) against independent references: a
 // uniform velocity moves every point by dt * w (the walk across edges, along edges and through vertices);
 // the boundary stops it where it meets it; with no velocity the vector is the P1 mass matrix (written here
 // from |K| (1 + delta_ab) / 12) times the field, and with a uniform velocity the mass matrix times the
