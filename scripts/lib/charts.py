@@ -2,7 +2,8 @@
 their units, a reference drawn as a dashed line, point labels only where they do not collide.
 
 Each chart also leaves its data (<name>.dat) and gnuplot script (<name>.gp) beside the PNG, so that it
-can be redrawn or restyled by hand.
+can be redrawn or restyled by hand: the script finds its data and writes its PNG in its own folder
+(HERE below), so `gnuplot path/to/<name>.gp` works from any folder and the folder can be moved whole.
 """
 import math
 import os
@@ -23,6 +24,25 @@ class Series:
 
 def _finite(v):
     return isinstance(v, (int, float)) and v == v and abs(v) != float("inf")
+
+
+# gnuplot lines that set `here` to the folder of the script being run (ARG0 up to its last '/', "." for a
+# script named without a folder); data and PNG paths are written as here.'/<file>'.
+HERE = ["here = ARG0; i = strlen(here); while (i > 0 && here[i:i] ne '/') { i = i - 1 }",
+        "here = (i > 1 ? here[1:i-1] : (i == 1 ? '/' : '.'))"]
+
+
+def here_file(path, folder):
+    """path as a gnuplot string expression for a script kept in folder: here.'/<relative path>' when path
+    lies in folder, else path itself, absolute."""
+    rel = os.path.relpath(os.path.abspath(path), os.path.abspath(folder))
+    if rel == os.pardir or rel.startswith(os.pardir + os.sep):
+        return _squote(os.path.abspath(path))
+    return "here.%s" % _squote("/" + rel)
+
+
+def _squote(text):
+    return "'" + str(text).replace("'", "''") + "'"
 
 
 def _quote(text):
@@ -81,8 +101,9 @@ def chart(png, title, xlabel, ylabel, series, logx=False, logy=False, refs=(), l
                 f.write("%.10g %.10g\n" % (x, y))
             f.write("\n\n")
     lines = [
+        *HERE,
         "set terminal pngcairo size %d,%d noenhanced font ',10'" % size,
-        "set output %s" % _quote(png),
+        "set output %s" % here_file(png, os.path.dirname(png)),
         "set title %s" % _quote(title),
         "set xlabel %s" % _quote(xlabel),
         "set ylabel %s" % _quote(ylabel),
@@ -114,7 +135,7 @@ def chart(png, title, xlabel, ylabel, series, logx=False, logy=False, refs=(), l
                  "linespoints": "linespoints lw %g pt %d ps 1.3" % (s.width, s.pt)}[s.style]
         dash = " dt %d" % s.dash if s.dash else ""
         plots.append("%s index %d using 1:2 with %s%s lc rgb '%s' title %s"
-                     % (_quote(base + ".dat"), i, style, dash, colour, _quote(s.name)))
+                     % (here_file(base + ".dat", os.path.dirname(png)), i, style, dash, colour, _quote(s.name)))
     for name, y in refs:
         if _finite(y):
             plots.append("%.10g with lines dt 2 lw 2 lc rgb 'black' title %s" % (y, _quote(name)))
@@ -136,8 +157,9 @@ def grid_chart(png, title, panels, xticks, yticks, xlabel, ylabel, legend):
                 f.write("%d %d %d %g %s\n" % (p, ix, iy, code, _quote(label)))
     width = 420 + 480 * len(panels)
     lines = [
+        *HERE,
         "set terminal pngcairo size %d,560 noenhanced font ',10'" % width,
-        "set output %s" % _quote(png),
+        "set output %s" % here_file(png, os.path.dirname(png)),
         "set multiplot layout 1,%d title %s font ',11'" % (len(panels), _quote(title + "\n" + legend)),
         "set palette defined (0 '#70c070', 0.5 '#f0a030', 1 '#e05050')",
         "set cbrange [0:1]", "unset colorbox", "unset key",
@@ -148,7 +170,7 @@ def grid_chart(png, title, panels, xticks, yticks, xlabel, ylabel, legend):
         "set style fill solid 1.0 border lc rgb 'white'",
     ]
     for p, (name, _) in enumerate(panels):
-        dat = _quote(base + ".dat")
+        dat = here_file(base + ".dat", os.path.dirname(png))
         lines.append("set title %s" % _quote(name))
         lines.append("plot %s using ($1 == %d ? $2 : 1/0):3:(0.48):(0.48):4 with boxxyerror fc palette, \\\n"
                      "     %s using ($1 == %d ? $2 : 1/0):3:5 with labels font ',8'" % (dat, p, dat, p))
