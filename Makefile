@@ -92,7 +92,9 @@ fuzz:
 	  -artifact_prefix=$(BUILD)-fuzz/3d- $(BUILD)-fuzz/corpus3d tests/fuzz/corpus/3d
 
 # The README's two commands as a new user meets them: a bare Debian 12 root (debootstrap minbase), a clean
-# clone of HEAD, `make test` then `make compare` in a chroot (scripts/fresh-check; root, about 20 minutes on 2 cores).
+# clone of HEAD, `make test`, then `make install` with a script of one's own run from a fresh folder and `make
+# uninstall` (tests/install/system_check), then `make compare`, in a chroot (scripts/fresh-check; root, about 20
+# minutes on 2 cores).
 fresh-check:
 	OUT=$(abspath $(OUT)) scripts/fresh-check
 
