@@ -8,7 +8,7 @@ OUT ?= results
 QUICK ?= 0
 FF := bin/ff
 
-.PHONY: all deps build test compare bench evidence sanitize fuzz fresh-check clean supermesh-compare
+.PHONY: all deps build test compare bench evidence sanitize fuzz fresh-check clean supermesh-compare install uninstall
 
 all: build
 
@@ -92,9 +92,23 @@ fuzz:
 	  -artifact_prefix=$(BUILD)-fuzz/3d- $(BUILD)-fuzz/corpus3d tests/fuzz/corpus/3d
 
 # The README's two commands as a new user meets them: a bare Debian 12 root (debootstrap minbase), a clean
-# clone of HEAD, `make test` then `make compare` in a chroot (scripts/fresh-check; root, about 20 minutes on 2 cores).
+# clone of HEAD, `make test`, then `make install` with a script of one's own run from a fresh folder and `make
+# uninstall` (tests/install/system_check), then `make compare`, in a chroot (scripts/fresh-check; root, about 20
+# minutes on 2 cores).
 fresh-check:
 	OUT=$(abspath $(OUT)) scripts/fresh-check
+
+# The plugins (PREFIX/lib/dlmfsi/) and the script library (PREFIX/share/dlmfsi/lib/) for plain FreeFem++,
+# FreeFem++-nw and FreeFem++-mpi from any folder: their folders, and Debian's plugin and .idp folders, go into
+# FreeFEM's /etc/freefem++.pref in a marked block (FF_PREF names another file); DESTDIR stages every path.
+# `make uninstall` removes what PREFIX/share/dlmfsi/install-manifest.txt lists and the block (docs/install.md).
+PREFIX ?= /usr/local
+DESTDIR ?=
+install: build
+	@PREFIX=$(PREFIX) DESTDIR=$(DESTDIR) BUILD=$(abspath $(BUILD)) scripts/install
+
+uninstall:
+	@PREFIX=$(PREFIX) DESTDIR=$(DESTDIR) scripts/uninstall
 
 clean:
 	rm -rf $(BUILD) $(BUILD)-sanitize $(BUILD)-fuzz $(BUILD).configure.log

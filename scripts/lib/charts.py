@@ -1,8 +1,9 @@
-"""Charts in one style for every driver (gnuplot, PNG): the legend outside the data, axes named with
+"""Charts in one style for every driver (gnuplot, PNG): the legend below the data, axes named with
 their units, a reference drawn as a dashed line, point labels only where they do not collide.
 
 Each chart also leaves its data (<name>.dat) and gnuplot script (<name>.gp) beside the PNG, so that it
-can be redrawn or restyled by hand.
+can be redrawn or restyled by hand: the script finds its data and writes its PNG in its own folder
+(HERE below), so `gnuplot path/to/<name>.gp` works from any folder and the folder can be moved whole.
 """
 import math
 import os
@@ -23,6 +24,25 @@ class Series:
 
 def _finite(v):
     return isinstance(v, (int, float)) and v == v and abs(v) != float("inf")
+
+
+# gnuplot lines that set `here` to the folder of the script being run (ARG0 up to its last '/', "." for a
+# script named without a folder); data and PNG paths are written as here.'/<file>'.
+HERE = ["here = ARG0; i = strlen(here); while (i > 0 && here[i:i] ne '/') { i = i - 1 }",
+        "here = (i > 1 ? here[1:i-1] : (i == 1 ? '/' : '.'))"]
+
+
+def here_file(path, folder):
+    """path as a gnuplot string expression for a script kept in folder: here.'/<relative path>' when path
+    lies in folder, else path itself, absolute."""
+    rel = os.path.relpath(os.path.abspath(path), os.path.abspath(folder))
+    if rel == os.pardir or rel.startswith(os.pardir + os.sep):
+        return _squote(os.path.abspath(path))
+    return "here.%s" % _squote("/" + rel)
+
+
+def _squote(text):
+    return "'" + str(text).replace("'", "''") + "'"
 
 
 def _quote(text):
@@ -48,14 +68,14 @@ def _axis_range(values, log):
 
 def _placed_labels(labels, xr, yr, logx, logy, size):
     """Keep the labels whose boxes (in the drawn chart's coordinates) do not overlap a kept one. The data
-    area is about 55 % of the width (the legend sits to its right) and 80 % of the height; a character of
-    the labels' font is about 6.5 pixels wide and a line 14 pixels high."""
+    area is about 88 % of the width and 70 % of the height (the title above, the legend below); a character
+    of the labels' font is about 6.5 pixels wide and a line 14 pixels high."""
     if not xr or not yr:
         return []
     fx = (lambda v: math.log10(v)) if logx else (lambda v: v)
     fy = (lambda v: math.log10(v)) if logy else (lambda v: v)
     sx, sy = (fx(xr[1]) - fx(xr[0])) or 1.0, (fy(yr[1]) - fy(yr[0])) or 1.0
-    char_w, line_h = 6.5 / (0.55 * size[0]), 14.0 / (0.8 * size[1])
+    char_w, line_h = 6.5 / (0.88 * size[0]), 14.0 / (0.7 * size[1])
     kept, boxes = [], []
     for x, y, text in labels:
         if (logx and x <= 0) or (logy and y <= 0) or not (_finite(x) and _finite(y)):
@@ -81,18 +101,20 @@ def chart(png, title, xlabel, ylabel, series, logx=False, logy=False, refs=(), l
                 f.write("%.10g %.10g\n" % (x, y))
             f.write("\n\n")
     lines = [
+        *HERE,
         "set terminal pngcairo size %d,%d noenhanced font ',10'" % size,
-        "set output %s" % _quote(png),
+        "set output %s" % here_file(png, os.path.dirname(png)),
         "set title %s" % _quote(title),
         "set xlabel %s" % _quote(xlabel),
         "set ylabel %s" % _quote(ylabel),
         "set grid",
-        "set key outside right top vertical Left reverse samplen 2 spacing 1.2 font ',9'",
+        # below the data, in columns: the data keep the chart's width whatever the series' names
+        "set key below center horizontal Left reverse samplen 2 spacing 1.2 maxcols 3 font ',9'",
     ]
     if logx:
-        lines.append("set logscale x")
+        lines += ["set logscale x", "set format x '%g'"]   # 0.001, 1e-06: no padded decimals
     if logy:
-        lines.append("set logscale y")
+        lines += ["set logscale y", "set format y '%g'"]
     allx = [x for s in series for x, _ in s.points] + [x for x, _, _ in labels]
     ally = [y for s in series for _, y in s.points] + [y for _, y, _ in labels] + [y for _, y in refs]
     xrange = xrange or _axis_range(allx, logx)
@@ -114,7 +136,7 @@ def chart(png, title, xlabel, ylabel, series, logx=False, logy=False, refs=(), l
                  "linespoints": "linespoints lw %g pt %d ps 1.3" % (s.width, s.pt)}[s.style]
         dash = " dt %d" % s.dash if s.dash else ""
         plots.append("%s index %d using 1:2 with %s%s lc rgb '%s' title %s"
-                     % (_quote(base + ".dat"), i, style, dash, colour, _quote(s.name)))
+                     % (here_file(base + ".dat", os.path.dirname(png)), i, style, dash, colour, _quote(s.name)))
     for name, y in refs:
         if _finite(y):
             plots.append("%.10g with lines dt 2 lw 2 lc rgb 'black' title %s" % (y, _quote(name)))
@@ -136,8 +158,9 @@ def grid_chart(png, title, panels, xticks, yticks, xlabel, ylabel, legend):
                 f.write("%d %d %d %g %s\n" % (p, ix, iy, code, _quote(label)))
     width = 420 + 480 * len(panels)
     lines = [
+        *HERE,
         "set terminal pngcairo size %d,560 noenhanced font ',10'" % width,
-        "set output %s" % _quote(png),
+        "set output %s" % here_file(png, os.path.dirname(png)),
         "set multiplot layout 1,%d title %s font ',11'" % (len(panels), _quote(title + "\n" + legend)),
         "set palette defined (0 '#70c070', 0.5 '#f0a030', 1 '#e05050')",
         "set cbrange [0:1]", "unset colorbox", "unset key",
@@ -148,7 +171,7 @@ def grid_chart(png, title, panels, xticks, yticks, xlabel, ylabel, legend):
         "set style fill solid 1.0 border lc rgb 'white'",
     ]
     for p, (name, _) in enumerate(panels):
-        dat = _quote(base + ".dat")
+        dat = here_file(base + ".dat", os.path.dirname(png))
         lines.append("set title %s" % _quote(name))
         lines.append("plot %s using ($1 == %d ? $2 : 1/0):3:(0.48):(0.48):4 with boxxyerror fc palette, \\\n"
                      "     %s using ($1 == %d ? $2 : 1/0):3:5 with labels font ',8'" % (dat, p, dat, p))

@@ -9,7 +9,7 @@ Axes (each grid varies two, the others at the base value):
   gap   : falling disk only, the gap between the disk and the left side wall (-xc R+gap) or the bottom wall
           (-yc R+gap), in fluid cells: 8, 2, 0.5, 0.1.
 Outcome of a run: stable, or unstable with the reason: fail (no summary: the run stopped), fail-coupling (the
-coupling raised an error, e.g. a folded map), fail-nan, area (solid area drift above 1 %), growth (falling
+coupling raised an error, e.g. a folded map), fail-nan, fail-left (falling disk: the disk crossed a wall), area (solid area drift above 1 %), growth (falling
 disk: v^2 over the last quarter of the run above 4x its maximum before; rotating disk: l2err(T) > 1). A run
 over RUN_TIMEOUT CPU seconds is stopped and recorded as a timeout (too slow to be of use: a finding too).
 Error: falling disk |vterm - vref| / |vref| (a deviation, not an error, where mu or the gap changes the
@@ -111,8 +111,9 @@ def _classify(job, runs_dir, vref):
     else:
         err, area, growth = job.get("l2err"), job.get("area"), job.get("l2err")
     reason = ""
-    if job.failed or "NaN at step" in log or "coupling failed" in log or "blow-up" in log:
-        reason = "fail-coupling" if "coupling failed" in log else "fail-nan" if "NaN at step" in log else "fail"
+    if job.failed or "NaN at step" in log or "coupling failed" in log or "blow-up" in log or "left the channel" in log:
+        reason = ("fail-coupling" if "coupling failed" in log else "fail-nan" if "NaN at step" in log
+                  else "fail-left" if "left the channel" in log else "fail")
     elif err != err:
         reason = "fail-nan"
     elif area != area or abs(area) > 0.01:
