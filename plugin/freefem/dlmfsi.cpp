@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <cstdint>
 #include <exception>
 #include <memory>
 #include <string>
@@ -126,6 +127,7 @@ class DlmfsiOp : public E_F0mps {
  private:
   std::vector<int> components(int i, const char* side, Stack stack) const;
   dlmfsi::CouplingOptions options(Stack stack) const;
+  std::uint64_t map_checksum(Stack stack) const;
   const dlmfsi::CsrMatrix& assemble(Stack stack, const dlmfsi::CouplingOptions& opt) const;
 };
 
@@ -198,6 +200,19 @@ dlmfsi::CouplingOptions DlmfsiOp::options(Stack stack) const {
   return o;
 }
 
+// The checksum of the map's coefficient arrays (X's, then Y's, each with its component), which every process
+// of a distributed assembly compares.
+std::uint64_t DlmfsiOp::map_checksum(Stack stack) const {
+  std::uint64_t h = 0;
+  for (Expression e : {map_x, map_y}) {
+    const pfer p = GetAny<pfer>((*e)(stack));
+    if (!p.first || !p.first->x()) throw dlmfsi::Error("the map [X, Y] holds a finite element function without values");
+    const KN<double>& c = *p.first->x();
+    h = dlmfsi_ff::checksum(c.n ? &c[0] : nullptr, static_cast<std::size_t>(c.n), h ^ static_cast<std::uint64_t>(p.second));
+  }
+  return h;
+}
+
 const dlmfsi::CsrMatrix& DlmfsiOp::assemble(Stack stack, const dlmfsi::CouplingOptions& opt) const {
   FESpace* vf = **GetAny<pfes*>((*fluid_space)(stack));
   FESpace* vs = **GetAny<pfes*>((*solid_space)(stack));
@@ -241,15 +256,19 @@ AnyType DlmfsiOp::operator()(Stack stack) const {
   std::string failure;
   dlmfsi::CouplingOptions opt;
   const dlmfsi::CsrMatrix* matrix = nullptr;
+  const bool shared = named.given(Args::kPart) && dlmfsi_ff::distributed();
+  std::uint64_t checksum = 0;
   try {
     opt = options(stack);
+    if (shared) checksum = map_checksum(stack);
     matrix = &assemble(stack, opt);
   } catch (...) {
     failure = dlmfsi_ff::current_message();
   }
-  // A share of a distributed assembly: every process raises the same error, or none does.
-  if (named.given(Args::kPart) && dlmfsi_ff::distributed())
-    failure = dlmfsi_ff::agree(failure.empty() ? opt.part : -1, failure.empty() ? opt.parts : -1, failure);
+  // A share of a distributed assembly: every process raises the same error, or none does; the shares and the
+  // map must be the same on every process.
+  if (shared)
+    failure = dlmfsi_ff::agree(failure.empty() ? opt.part : -1, failure.empty() ? opt.parts : -1, failure, checksum);
   if (!failure.empty()) dlmfsi_ff::fail(failure);
   // FreeFEM copies the compressed rows (set(..., tcsr=1)); they stay the assembly's.
   const dlmfsi::CsrMatrix& b = *matrix;

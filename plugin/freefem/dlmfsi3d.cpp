@@ -10,6 +10,7 @@
 #include "ff++.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -19,6 +20,7 @@
 #include "map/field_map3d.hpp"
 #include "coupling_args.hpp"
 #include "errors.hpp"
+#include "ranks.hpp"
 #include "side_cache.hpp"
 #include "space_basis.hpp"
 #include "units.hpp"
@@ -116,6 +118,8 @@ class Dlmfsi3Op : public E_F0mps {
     return out;
   }
   dlmfsi::CouplingOptions options(Stack stack) const;
+  std::uint64_t map_checksum(Stack stack) const;
+  const dlmfsi::CsrMatrix& assemble(Stack stack, const dlmfsi::CouplingOptions& opt) const;
 };
 
 dlmfsi::CouplingOptions Dlmfsi3Op::options(Stack stack) const {
@@ -160,53 +164,87 @@ dlmfsi::CouplingOptions Dlmfsi3Op::options(Stack stack) const {
   return o;
 }
 
-AnyType Dlmfsi3Op::operator()(Stack stack) const {
-  return dlmfsi_ff::guarded([&]() -> AnyType {
-    if (!map_error.empty()) throw dlmfsi::Error(map_error.substr(8));
-    const dlmfsi::CouplingOptions opt = options(stack);
-    FESpace3* vf = **GetAny<pfes3*>((*fluid_space)(stack));
-    FESpace3* vs = **GetAny<pfes3*>((*solid_space)(stack));
-    if (!vf || !vs) throw dlmfsi::Error("a space is not defined");
-    pf3r p[3];
-    const FESpace3* sp[3];
-    for (int a = 0; a < 3; ++a) {
-      p[a] = GetAny<pf3r>((*map[a])(stack));
-      if (!p[a].first || !p[a].first->x() || !(FESpace3*)p[a].first->Vh)
-        throw dlmfsi::Error("the map [X, Y, Z] holds a finite element function without values");
-      sp[a] = (FESpace3*)p[a].first->Vh;
-      if (&sp[a]->Th != &vs->Th) throw dlmfsi::Error("the map [X, Y, Z] is not defined on the mesh of the multiplier space Vs");
+// The checksum of the map's coefficient arrays (X's, Y's, then Z's, each with its component), which every
+// process of a distributed assembly compares.
+std::uint64_t Dlmfsi3Op::map_checksum(Stack stack) const {
+  std::uint64_t h = 0;
+  for (int a = 0; a < 3; ++a) {
+    const pf3r p = GetAny<pf3r>((*map[a])(stack));
+    if (!p.first || !p.first->x()) throw dlmfsi::Error("the map [X, Y, Z] holds a finite element function without values");
+    const KN<double>& c = *p.first->x();
+    h = dlmfsi_ff::checksum(c.n ? &c[0] : nullptr, static_cast<std::size_t>(c.n), h ^ static_cast<std::uint64_t>(p.second));
+  }
+  return h;
+}
+
+const dlmfsi::CsrMatrix& Dlmfsi3Op::assemble(Stack stack, const dlmfsi::CouplingOptions& opt) const {
+  FESpace3* vf = **GetAny<pfes3*>((*fluid_space)(stack));
+  FESpace3* vs = **GetAny<pfes3*>((*solid_space)(stack));
+  if (!vf || !vs) throw dlmfsi::Error("a space is not defined");
+  pf3r p[3];
+  const FESpace3* sp[3];
+  for (int a = 0; a < 3; ++a) {
+    p[a] = GetAny<pf3r>((*map[a])(stack));
+    if (!p[a].first || !p[a].first->x() || !(FESpace3*)p[a].first->Vh)
+      throw dlmfsi::Error("the map [X, Y, Z] holds a finite element function without values");
+    sp[a] = (FESpace3*)p[a].first->Vh;
+    if (&sp[a]->Th != &vs->Th) throw dlmfsi::Error("the map [X, Y, Z] is not defined on the mesh of the multiplier space Vs");
+  }
+  const dlmfsi::FluidSide3& fluid = fluid_cache().get(*vf, opt.fluid_components);
+  SolidCache3& cache = solid_cache();
+  const dlmfsi::SolidSide3& solid = cache.get(*vs, opt.solid_components);
+  cache.trim_fits();
+  const SpaceBasis3 bx(*sp[0]), by(*sp[1]), bz(*sp[2]);
+  const dlmfsi::Basis3* spaces[3] = {&bx, &by, &bz};
+  const int comps[3] = {p[0].second, p[1].second, p[2].second};
+  const double* values[3] = {&(*p[0].first->x())[0], &(*p[1].first->x())[0], &(*p[2].first->x())[0]};
+  const int degree = dlmfsi::FieldMap3::fit_degree(spaces, comps);
+  const dlmfsi::PolynomialBasis3* fits[3] = {nullptr, nullptr, nullptr};
+  if (degree > 0)
+    for (int a = 0; a < 3; ++a) fits[a] = cache.map_fit(*sp[a], comps[a], degree);
+  // The kept spaces read their dofs from a table (which threads may share).
+  int kept = 0;
+  for (int a = 0; a < 3; ++a)
+    if (const dlmfsi::Basis3* k = cache.map_space(*sp[a])) {
+      spaces[a] = k;
+      ++kept;
     }
-    const dlmfsi::FluidSide3& fluid = fluid_cache().get(*vf, opt.fluid_components);
-    SolidCache3& cache = solid_cache();
-    const dlmfsi::SolidSide3& solid = cache.get(*vs, opt.solid_components);
-    cache.trim_fits();
-    const SpaceBasis3 bx(*sp[0]), by(*sp[1]), bz(*sp[2]);
-    const dlmfsi::Basis3* spaces[3] = {&bx, &by, &bz};
-    const int comps[3] = {p[0].second, p[1].second, p[2].second};
-    const double* values[3] = {&(*p[0].first->x())[0], &(*p[1].first->x())[0], &(*p[2].first->x())[0]};
-    const int degree = dlmfsi::FieldMap3::fit_degree(spaces, comps);
-    const dlmfsi::PolynomialBasis3* fits[3] = {nullptr, nullptr, nullptr};
-    if (degree > 0)
-      for (int a = 0; a < 3; ++a) fits[a] = cache.map_fit(*sp[a], comps[a], degree);
-    // The kept spaces read their dofs from a table (which threads may share).
-    int kept = 0;
-    for (int a = 0; a < 3; ++a)
-      if (const dlmfsi::Basis3* k = cache.map_space(*sp[a])) {
-        spaces[a] = k;
-        ++kept;
-      }
-    const dlmfsi::FieldMap3 xmap(solid.mesh(), spaces, values, comps, fits, kept == 3 ? opt.threads : 1);
-    dlmfsi::CouplingReport report;
-    const dlmfsi::CsrMatrix& b = assembly3().assemble(fluid, solid, xmap, opt, &report);
-    if (verbosity > 1) cout << report.summary() << endl;
-    if (opt.drop_outside && report.outside_measure > 0 && verbosity > 0)
-      cout << "dlmfsi: dropped volume outside the fluid mesh " << report.outside_measure << " (solid tetrahedron "
-           << report.worst_element << " worst)" << endl;
-    MatriceMorse<double>* pa = new MatriceMorse<double>(b.rows, b.cols, 0, 0);
-    pa->set(b.rows, b.cols, 0, b.value.size(), const_cast<int*>(b.start.data()), const_cast<int*>(b.column.data()),
-            const_cast<double*>(b.value.data()), 0, 1);
-    return SetAny<newpMatrice_Creuse<double> >(newpMatrice_Creuse<double>(stack, pa));
-  });
+  const dlmfsi::FieldMap3 xmap(solid.mesh(), spaces, values, comps, fits, kept == 3 ? opt.threads : 1);
+  dlmfsi::CouplingReport report;
+  const dlmfsi::CsrMatrix& b = assembly3().assemble(fluid, solid, xmap, opt, &report);
+  if (verbosity > 1) cout << report.summary() << endl;
+  if (opt.drop_outside && report.outside_measure > 0 && verbosity > 0)
+    cout << "dlmfsi: dropped volume outside the fluid mesh " << report.outside_measure << " (solid tetrahedron "
+         << report.worst_element << " worst)" << endl;
+  return b;
+}
+
+AnyType Dlmfsi3Op::operator()(Stack stack) const {
+  dlmfsi_ff::last_error().clear();
+  std::string failure;
+  dlmfsi::CouplingOptions opt;
+  const dlmfsi::CsrMatrix* matrix = nullptr;
+  const bool shared = named.given(Args::kPart) && dlmfsi_ff::distributed();
+  std::uint64_t checksum = 0;
+  try {
+    if (!map_error.empty()) throw dlmfsi::Error(map_error.substr(8));
+    opt = options(stack);
+    if (shared) checksum = map_checksum(stack);
+    matrix = &assemble(stack, opt);
+  } catch (...) {
+    failure = dlmfsi_ff::current_message();
+  }
+  // A share of a distributed assembly: every process raises the same error, or none does; the shares and the
+  // map must be the same on every process.
+  if (shared)
+    failure = dlmfsi_ff::agree(failure.empty() ? opt.part : -1, failure.empty() ? opt.parts : -1, failure, checksum);
+  if (!failure.empty()) dlmfsi_ff::fail(failure);
+  // FreeFEM copies the compressed rows (set(..., tcsr=1)); they stay the assembly's.
+  const dlmfsi::CsrMatrix& b = *matrix;
+  MatriceMorse<double>* pa = new MatriceMorse<double>(b.rows, b.cols, 0, 0);
+  pa->set(b.rows, b.cols, 0, b.value.size(), const_cast<int*>(b.start.data()), const_cast<int*>(b.column.data()),
+          const_cast<double*>(b.value.data()), 0, 1);
+  return SetAny<newpMatrice_Creuse<double> >(newpMatrice_Creuse<double>(stack, pa));
 }
 
 }  // namespace

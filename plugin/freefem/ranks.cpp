@@ -39,11 +39,25 @@ const Mpi& mpi() {
 
 // One process's report: its share, whether it failed, and the start of its message.
 struct Report {
+  std::uint64_t map_checksum;
   int part, parts, failed;
   char message[500];
 };
 
 }  // namespace
+
+std::uint64_t checksum(const double* v, std::size_t n, std::uint64_t seed) {
+  // h <- (h xor bits(v_i)) * odd constant, then the high half folded into the low: every bit of v_i reaches
+  // the high bits of h, and the product chain makes the checksum depend on the order. The length closes it.
+  std::uint64_t h = seed ^ 0x9e3779b97f4a7c15ULL;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint64_t bits;
+    std::memcpy(&bits, v + i, sizeof bits);
+    h = (h ^ bits) * 0xff51afd7ed558ccdULL;
+    h ^= h >> 32;
+  }
+  return (h ^ n) * 0xc4ceb9fe1a85ec53ULL;
+}
 
 bool distributed() {
   const Mpi& m = mpi();
@@ -56,7 +70,7 @@ bool distributed() {
   return size > 1;
 }
 
-std::string agree(int part, int parts, const std::string& failure) {
+std::string agree(int part, int parts, const std::string& failure, std::uint64_t map_checksum) {
   const Mpi& m = mpi();
   int size = 1, rank = 0;
   m.comm_size(m.world, &size);
@@ -65,6 +79,7 @@ std::string agree(int part, int parts, const std::string& failure) {
   mine.part = part;
   mine.parts = parts;
   mine.failed = failure.empty() ? 0 : 1;
+  mine.map_checksum = map_checksum;
   std::strncpy(mine.message, failure.c_str(), sizeof mine.message - 1);
   std::vector<Report> all(size);
   m.allgather(&mine, sizeof mine, m.byte, all.data(), sizeof mine, m.byte, m.world);
@@ -90,7 +105,17 @@ std::string agree(int part, int parts, const std::string& failure) {
   }
   for (int c : count)
     if (c != 1) consistent = false;
-  if (consistent) return "";
+  if (consistent) {
+    // The map: the processes whose checksum is not process 0's.
+    std::string differ;
+    int n_differ = 0;
+    for (int r = 1; r < size; ++r)
+      if (all[r].map_checksum != all[0].map_checksum) differ += (n_differ++ ? ", " : "") + std::to_string(r);
+    if (!n_differ) return "";
+    return "dlmfsi: the map differs between processes: the values of [X, Y] (or [X, Y, Z]) on process" +
+           std::string(n_differ > 1 ? "es " : " ") + differ + " are not those on process 0 (checksums of their "
+           "coefficients differ); gather it before the call, so that every process passes the same map";
+  }
   std::string shares;
   for (int r = 0; r < size; ++r)
     shares += (r ? ", " : "") + std::string("process ") + std::to_string(r) + " has part=[" + std::to_string(all[r].part) +
