@@ -71,10 +71,19 @@ int main(int argc, char** argv) {
   auto clock = [] { return std::chrono::steady_clock::now(); };
   auto since = [](auto t) { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count(); };
   auto t0 = clock();
+  long faults0 = minor_faults();
   const FluidSide fluid_side(fluid, vf, opt.fluid_components);
+  const double prepare_fluid = since(t0);
+  const long fluid_faults = minor_faults() - faults0;
+  faults0 = minor_faults();
   const SolidSide solid_side(solid, vs, opt.solid_components);
+  const double prepare_solid = since(t0) - prepare_fluid;
+  const long solid_faults = minor_faults() - faults0;
   const PolynomialBasis map_fit(vs, solid, 1, {0});  // kept, as the adapter keeps the map spaces' fits
   const double prepare = since(t0);
+  std::printf("prepare: fluid side %.4f s wall (%ld page faults), solid side %.4f s wall (%ld page faults), "
+              "map fit %.4f s wall\n", prepare_fluid, fluid_faults, prepare_solid, solid_faults,
+              prepare - prepare_fluid - prepare_solid);
   CouplingAssembly assembly;
   CouplingReport report;
   std::vector<double> wall, cpu;
@@ -94,8 +103,10 @@ int main(int argc, char** argv) {
     const CsrMatrix& b = assembly.assemble(fluid_side, solid_side, map, opt, &report);
     wall.push_back(since(t0));
     cpu.push_back(static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC);
-    std::printf("call %d: %.4f s wall, %.4f s CPU, %ld page faults, %ld pieces%s\n", call + 1, wall.back(), cpu.back(),
-                minor_faults() - faults, report.pieces, assembly.kept_pattern() ? ", pattern kept" : "");
+    std::printf("call %d: %.4f s wall, %.4f s CPU, %ld page faults, %ld pieces%s; setup %.4f pieces %.4f matrix %.4f "
+                "s wall\n", call + 1, wall.back(), cpu.back(), minor_faults() - faults, report.pieces,
+                assembly.kept_pattern() ? ", pattern kept" : "", report.setup_seconds, report.pieces_seconds,
+                report.seconds - report.setup_seconds - report.pieces_seconds);
     sum = 0;
     for (double v : b.value) sum += v;
   }

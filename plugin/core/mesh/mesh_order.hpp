@@ -9,9 +9,21 @@
 
 namespace dlmfsi {
 
-// The element numbers sorted by their keys (ties by element number).
+// The element numbers sorted by their keys, ties by element number: keyed[k] = {key, k} in order of k (both
+// callers build it so), and a least-significant-digit radix sort (three stable passes of 11 bits) keeps the
+// order of equal keys, so the result is that of sorting the pairs (key, k), in O(n).
 inline std::vector<int> order_by_key(std::vector<std::pair<uint32_t, int>> keyed) {
-  std::sort(keyed.begin(), keyed.end());
+  constexpr int kBits = 11, kBuckets = 1 << kBits;
+  std::vector<std::pair<uint32_t, int>> other(keyed.size());
+  std::vector<std::size_t> start(kBuckets);
+  for (int shift = 0; shift < 32; shift += kBits) {
+    std::fill(start.begin(), start.end(), 0);
+    for (const auto& e : keyed) ++start[(e.first >> shift) & (kBuckets - 1)];
+    std::size_t at = 0;
+    for (std::size_t& s : start) at += std::exchange(s, at);
+    for (const auto& e : keyed) other[start[(e.first >> shift) & (kBuckets - 1)]++] = e;
+    keyed.swap(other);
+  }
   std::vector<int> order(keyed.size());
   for (std::size_t k = 0; k < keyed.size(); ++k) order[k] = keyed[k].second;
   return order;
