@@ -50,10 +50,14 @@ void TriangleMap::fit(const Mesh& solid_mesh, const SolidMap& map, int kk) {
   }
   for (int m = 0; m < n; ++m)
     if (!std::isfinite(cx[m]) || !std::isfinite(cy[m])) throw Error("the map is NaN or Inf in " + name());
+  // Monomial 0 is the constant: X(0, 0). Kept apart, so that X - X(0, 0) is evaluated to the precision of the
+  // other terms (a triangle of size h at distance R from 0: relative eps, not eps R / h).
+  origin_ = {cx[0], cy[0]};
+  cx[0] = cy[0] = 0;
   c_.set(degree_, cx, cy);
 }
 
-void TriangleMap::polynomial(Point xi, Point& x, Point& dx1, Point& dx2) const {
+void TriangleMap::displacement(Point xi, Point& x, Point& dx1, Point& dx2) const {
   switch (degree_) {
     case 1: evaluate_polynomial<1>(c_, xi, x, dx1, dx2); break;
     case 2: evaluate_polynomial<2>(c_, xi, x, dx1, dx2); break;
@@ -66,6 +70,15 @@ void TriangleMap::polynomial(Point xi, Point& x, Point& dx1, Point& dx2) const {
 
 void TriangleMap::polynomial_points(int n, const double* xi1, const double* xi2, double* x, double* y, double* a0,
                                     double* a1, double* b0, double* b1) const {
+  displacement_points(n, xi1, xi2, x, y, a0, a1, b0, b1);
+  for (int q = 0; q < n; ++q) {
+    x[q] += origin_.x;
+    y[q] += origin_.y;
+  }
+}
+
+void TriangleMap::displacement_points(int n, const double* xi1, const double* xi2, double* x, double* y, double* a0,
+                                      double* a1, double* b0, double* b1) const {
   switch (degree_) {
     case 1: evaluate_polynomial_points<1>(c_, n, xi1, xi2, x, y, a0, a1, b0, b1); break;
     case 2: evaluate_polynomial_points<2>(c_, n, xi1, xi2, x, y, a0, a1, b0, b1); break;

@@ -27,21 +27,28 @@ class TriangleMap {
   bool fitted() const { return degree_ >= 1; }
   int degree() const { return degree_; }
 
-  // X at reference corner i: (0, 0), (1, 0), (0, 1). There every monomial but the powers of one
-  // coordinate vanishes: the sum of their coefficients (monomial xi1^(t-b) xi2^b is number t(t+1)/2 + b).
+  // X at reference corner i: (0, 0), (1, 0), (0, 1): origin() + corner_displacement(i).
   Point corner_image(int i) const {
     if (degree_ < 1) {
       const Point ref[3] = {{0, 0}, {1, 0}, {0, 1}};
       return map_->evaluate(k, ref[i]).x;
     }
+    return i == 0 ? origin_ : origin_ + corner_displacement(i);
+  }
+  // X(corner i) - X(corner 0) (fitted() only). There every monomial but the powers of one coordinate
+  // vanishes: the sum of their coefficients (monomial xi1^(t-b) xi2^b is number t(t+1)/2 + b), the constant
+  // term excluded, so that the sum carries the digits of the triangle's size, not of its distance from 0.
+  Point corner_displacement(int i) const {
     Point x{0, 0};
-    for (int t = 0; t <= degree_; ++t) {
+    if (i == 0) return x;
+    for (int t = 1; t <= degree_; ++t) {
       const int m = t * (t + 1) / 2 + (i == 2 ? t : 0);
-      if (t > 0 && i == 0) break;
       x = x + Point{c_.x[2 * m], c_.x[2 * m + 1]};
     }
     return x;
   }
+  // X at reference corner 0 (fitted() only), the point displacements are measured from.
+  Point origin() const { return origin_; }
 
   // X and its derivatives in the reference coordinates, d1 = dX/dxi1 and d2 = dX/dxi2, at xi.
   void reference_derivatives(Point xi, Point& x, Point& d1, Point& d2) const;
@@ -52,11 +59,22 @@ class TriangleMap {
   // The map itself (not the fit) at xi.
   MapValue evaluate(Point xi) const { return map_->evaluate(k, xi); }
 
-  // The fitted polynomial's coefficients (fitted() only).
+  // The fitted polynomial's coefficients (fitted() only), its constant term 0: the coefficients of
+  // X - origin().
   const PolynomialMapCoefficients& coefficients() const { return c_; }
-  // The fitted polynomial and its derivatives in xi (fitted() only).
-  void polynomial(Point xi, Point& x, Point& d1, Point& d2) const;
-  // The same at n points, as arrays (evaluate_polynomial_points: x, y = X; a0, a1 = d1; b0, b1 = d2).
+  // The fitted polynomial and its derivatives in xi (fitted() only): x = origin() + displacement.
+  void polynomial(Point xi, Point& x, Point& d1, Point& d2) const {
+    displacement(xi, x, d1, d2);
+    x = origin_ + x;
+  }
+  // X(xi) - origin() and the derivatives (fitted() only), to the relative precision of the triangle's image
+  // wherever it lies.
+  void displacement(Point xi, Point& x, Point& d1, Point& d2) const;
+  // The displacement at n points, as arrays (evaluate_polynomial_points: x, y = X - origin(); a0, a1 = d1;
+  // b0, b1 = d2).
+  void displacement_points(int n, const double* xi1, const double* xi2, double* x, double* y, double* a0,
+                           double* a1, double* b0, double* b1) const;
+  // The same with x, y = X.
   void polynomial_points(int n, const double* xi1, const double* xi2, double* x, double* y, double* a0, double* a1,
                          double* b0, double* b1) const;
 
@@ -81,7 +99,8 @@ class TriangleMap {
  private:
   const SolidMap* map_ = nullptr;
   int degree_ = -1;
-  PolynomialMapCoefficients c_;  // monomial coefficients of X, Y and of their derivatives
+  Point origin_{0, 0};           // X at reference corner 0: the constant term of the fit
+  PolynomialMapCoefficients c_;  // monomial coefficients of X - origin_, Y and of their derivatives
   double inv_[2][2];                                                        // (d s / d xi)^-1
 };
 

@@ -16,14 +16,15 @@ std::string name(int k) { return "solid tetrahedron " + std::to_string(k); }
 
 }  // namespace
 
-void TetrahedronMap::polynomial(Point3 xi, Point3& x, Point3 d[3]) const {
+void TetrahedronMap::polynomial(Point3 xi, Point3& x, Point3 d[3], int first) const {
   const int nm = monomial_count3(degree_);
   double v[monomial_count3(kMaxDegree)];
   monomial_values3(degree_, xi, v);
   double s[3] = {0, 0, 0}, g[3][3] = {};
   const auto& derivative = monomial_derivatives3(degree_);
   for (int m = 0; m < nm; ++m) {
-    for (int a = 0; a < 3; ++a) s[a] += c_[a][m] * v[m];
+    if (m >= first)
+      for (int a = 0; a < 3; ++a) s[a] += c_[a][m] * v[m];
     for (int i = 0; i < 3; ++i) {
       // d/dxi_i of monomial m: factor times monomial j of degree - 1, the first ones of v
       const int j = derivative[m].index[i];

@@ -30,6 +30,11 @@ class TetrahedronMap {
   // X and its reference-coordinate derivatives d[i] = dX/dxi_i at xi (of the fitted polynomial, or of the
   // map itself when its degree is unknown).
   void reference_derivatives(Point3 xi, Point3& x, Point3 d[3]) const;
+  // X at reference corner 0, the fitted polynomial's constant term (fitted_degree() >= 1).
+  Point3 origin() const { return {c_[0][0], c_[1][0], c_[2][0]}; }
+  // X(xi) - origin() (the constant term left out: to the relative precision of the tetrahedron's image
+  // wherever it lies) and d[i] = dX/dxi_i, of the fitted polynomial (fitted_degree() >= 1).
+  void displacement(Point3 xi, Point3& x, Point3 d[3]) const { polynomial(xi, x, d, 1); }
 
  protected:
   const SolidMap3* map_ = nullptr;
@@ -37,8 +42,9 @@ class TetrahedronMap {
   double c_[3][monomial_count3(kMaxDegree)];  // monomial coefficients of X, Y, Z
 
  private:
-  // value and reference-coordinate derivatives d[i] = dX/dxi_i of the fitted polynomial
-  void polynomial(Point3 xi, Point3& x, Point3 d[3]) const;
+  // value and reference-coordinate derivatives d[i] = dX/dxi_i of the fitted polynomial, its value summed
+  // from monomial first on (0: X, 1: X - origin())
+  void polynomial(Point3 xi, Point3& x, Point3 d[3], int first = 0) const;
   double inv_[3][3];  // d xi / d s
 };
 

@@ -19,8 +19,9 @@ void MappedTriangle::prepare(const Mesh& solid_mesh, const SolidMap& map, int kk
   const int o = orient2d(image[0], image[1], image[2]);
   if (o == 0) throw Error("the map flattens " + name() + " (its image has zero area)");
   if (o < 0) throw Error("the map inverts " + name() + " (its image is clockwise: a reflection or a fold)");
-  // A^-1 = [f1 f2]^-1 for the image edges f1, f2
-  const Point f1 = image[1] - image[0], f2 = image[2] - image[0];
+  // A^-1 = [f1 f2]^-1 for the image edges f1, f2 (a fitted map's to the precision of the image's size)
+  const Point f1 = fitted() ? corner_displacement(1) : image[1] - image[0];
+  const Point f2 = fitted() ? corner_displacement(2) : image[2] - image[0];
   const double di = cross(f1, f2);
   image_inv_[0][0] = f2.y / di;
   image_inv_[0][1] = -f2.x / di;
@@ -38,7 +39,9 @@ void MappedTriangle::prepare(const Mesh& solid_mesh, const SolidMap& map, int kk
       check_fold(*this);
       const double inv_norm = std::max(std::fabs(image_inv_[0][0]) + std::fabs(image_inv_[0][1]),
                                        std::fabs(image_inv_[1][0]) + std::fabs(image_inv_[1][1]));
-      xi_round_off_ = 8 * kEps * magnitude() * inv_norm;
+      // a fitted map's residuals are relative to image[0] (newton_pull_back): their round-off is eps times
+      // the image's size, not its distance from 0
+      xi_round_off_ = 8 * kEps * (fitted() ? extent(f1, f2) : magnitude()) * inv_norm;
     }
   }
   if (!affine) return;
@@ -53,6 +56,11 @@ double MappedTriangle::magnitude() const {
   double m = 0;
   for (const Point& p : image) m = std::max({m, std::fabs(p.x), std::fabs(p.y)});
   return m;
+}
+
+double MappedTriangle::extent(Point f1, Point f2) {
+  return std::max({std::fabs(f1.x), std::fabs(f1.y), std::fabs(f2.x), std::fabs(f2.y), std::fabs(f2.x - f1.x),
+                   std::fabs(f2.y - f1.y)});
 }
 
 double MappedTriangle::area_round_off(long pieces) const {

@@ -63,9 +63,11 @@ class MappedTriangle : public TriangleMap {
  private:
   // The largest |coordinate| of the corner images.
   double magnitude() const;
+  // The largest |coordinate| of the image's edges f1, f2 and f2 - f1.
+  static double extent(Point f1, Point f2);
   static constexpr double kEps = 0x1p-52;
-  // Newton's floor in reference coordinates: a point y is known to about eps |y|, which is this much in xi
-  // (small triangles far from the origin: 1e-9 for a triangle of 1e-7 at distance 1).
+  // Newton's floor in reference coordinates: the residual y - X(xi) is known to about eps times the image's
+  // size for a fitted map (formed relative to image[0]), eps |y| otherwise; this much in xi.
   double xi_round_off_ = 0;
   double image_inv_[2][2];  // A^-1 = d xi / d y
 };

@@ -10,11 +10,15 @@ namespace dlmfsi {
 
 Point newton_pull_back(const TriangleMap& map, double xi_round_off, Point y, Point xi, MapValue& value) {
   // dX/dxi = [d1 d2] (d1, d2: the derivatives in xi1, xi2); its determinant has the sign of det dX/ds
-  // (the solid triangle is counter-clockwise).
+  // (the solid triangle is counter-clockwise). A fitted map's residual is (y - o) - (X(xi) - o), o = X(0, 0),
+  // each difference to the relative precision of the image's size: a small triangle far from 0 converges as
+  // near 0. x below is X - o.
   const bool fitted = map.fitted();
+  const Point o = fitted ? map.origin() : Point{0, 0};
+  const Point y_o = y - o;
   auto evaluate = [&](Point at_xi, Point& x, Point& d1, Point& d2) {
     if (fitted) {
-      map.polynomial(at_xi, x, d1, d2);
+      map.displacement(at_xi, x, d1, d2);
       return;
     }
     value = map.evaluate(at_xi);
@@ -23,7 +27,7 @@ Point newton_pull_back(const TriangleMap& map, double xi_round_off, Point y, Poi
   };
   auto finish = [&](Point x, Point d1, Point d2) {
     if (!fitted) return;  // value already holds X and dX/ds there
-    value.x = x;
+    value.x = o + x;
     map.set_jacobian(d1, d2, value);
   };
   double previous = 1e300;
@@ -38,7 +42,7 @@ Point newton_pull_back(const TriangleMap& map, double xi_round_off, Point y, Poi
       xi = last + last_step;
       continue;
     }
-    const Point r = y - x;
+    const Point r = y_o - x;
     const Point step{(d2.y * r.x - d2.x * r.y) / det, (d1.x * r.y - d1.y * r.x) / det};
     last = xi;
     last_step = step;
@@ -88,23 +92,24 @@ void newton_pull_back_points(const TriangleMap& map, double xi_round_off, int n,
     for (int q = 0; q < n; ++q) scalar(q);
     return;
   }
+  const Point o = map.origin();
   const size_t m = static_cast<size_t>(n);
   if (scratch.size() < 13 * m) scratch.resize(13 * m);
-  // the iterates (s1, s2), X there (x0, x1), its reference derivatives d1 = (a0, a1), d2 = (b0, b1), the
-  // steps (t1, t2), the points (y0, y1) and each point's state: 0 iterating, 1 converged (xi and jacobian
+  // the iterates (s1, s2), X - o there (x0, x1) with o = X(0, 0), its reference derivatives d1 = (a0, a1), d2 = (b0, b1), the
+  // steps (t1, t2), the points minus o (y0, y1) and each point's state: 0 iterating, 1 converged (xi and jacobian
   // set), 2 to be redone
   double *s1 = scratch.data(), *s2 = s1 + m, *x0 = s2 + m, *x1 = x0 + m, *a0 = x1 + m, *a1 = a0 + m;
   double *b0 = a1 + m, *b1 = b0 + m, *t1 = b1 + m, *t2 = t1 + m, *y0 = t2 + m, *y1 = y0 + m, *state = y1 + m;
   for (int q = 0; q < n; ++q) {
     s1[q] = xi[q].x;
     s2[q] = xi[q].y;
-    y0[q] = y[q].x;
-    y1[q] = y[q].y;
+    y0[q] = y[q].x - o.x;
+    y1[q] = y[q].y - o.y;
     state[q] = 0;
   }
   const double converged = std::max(1e-12, xi_round_off);
   for (int it = 0; it < 2; ++it) {
-    map.polynomial_points(n, s1, s2, x0, x1, a0, a1, b0, b1);
+    map.displacement_points(n, s1, s2, x0, x1, a0, a1, b0, b1);
     newton_steps(n, y0, y1, x0, x1, a0, a1, b0, b1, t1, t2);
     for (int q = 0; q < n; ++q) {
       if (state[q] != 0) continue;

@@ -19,12 +19,16 @@ Point3 pull_back(const MappedTet& mt, Point3 y, Point3 xi, MapValue3& value) {
     value.x = y;
     return mt.affine_reference(y);
   }
-  // Newton on X(xi) = y with dX/dxi = [d1 d2 d3]; its determinant has the sign of det dX/ds.
+  // Newton on X(xi) = y with dX/dxi = [d1 d2 d3]; its determinant has the sign of det dX/ds. A fitted map's
+  // residual is (y - o) - (X(xi) - o), o = X(0): each difference to the relative precision of the image's
+  // size, so that a small tetrahedron far from 0 converges as near 0. x below is X - o.
   const bool fitted = mt.fitted_degree() >= 1;
+  const Point3 o = fitted ? mt.origin() : Point3{0, 0, 0};
+  const Point3 y_o = y - o;
   const Point3 e[3] = {mt.solid[1] - mt.solid[0], mt.solid[2] - mt.solid[0], mt.solid[3] - mt.solid[0]};
   auto evaluate = [&](Point3 at_xi, Point3& x, Point3 d[3]) {
     if (fitted) {
-      mt.reference_derivatives(at_xi, x, d);
+      mt.displacement(at_xi, x, d);
       return;
     }
     value = mt.at(at_xi);  // the map's own value and dX/ds
@@ -36,7 +40,7 @@ Point3 pull_back(const MappedTet& mt, Point3 y, Point3 xi, MapValue3& value) {
   };
   auto finish = [&](Point3 x, const Point3 d[3]) {
     if (!fitted) return;  // value already holds X and dX/ds there
-    value.x = x;
+    value.x = o + x;
     mt.set_jacobian(d, value);
   };
   double previous = 1e300;
@@ -45,7 +49,7 @@ Point3 pull_back(const MappedTet& mt, Point3 y, Point3 xi, MapValue3& value) {
     evaluate(xi, x, d);
     const double det = dot(d[0], cross(d[1], d[2]));
     if (!(det > 0)) throw Error("the map folds " + name(mt.k) + " (jacobian determinant " + std::to_string(det) + ")");
-    const Point3 r = y - x;
+    const Point3 r = y_o - x;
     // Cramer: step = [d1 d2 d3]^-1 r
     const Point3 step{dot(r, cross(d[1], d[2])) / det, dot(d[0], cross(r, d[2])) / det,
                       dot(d[0], cross(d[1], r)) / det};
