@@ -2,12 +2,16 @@
 #pragma once
 #include "ff++.hpp"
 
+#include <cstdint>
 #include <cstdlib>
 #include <exception>
 #include <string>
 
 #include "mesh/mesh.hpp"
 #include "mesh/mesh3d.hpp"
+#include "ranks.hpp"
+#include "sides/options.hpp"
+#include "sparse/csr_matrix.hpp"
 
 namespace dlmfsi_ff {
 
@@ -94,6 +98,32 @@ AnyType guarded(Body&& body) {
     failure = current_message();
   }
   fail(failure);
+}
+
+// The matrix of one coupling call handed to FreeFEM: prepare(opt, checksum) reads the options (and, for a share of
+// a distributed assembly, the map's checksum) and returns the assembled matrix; any exception becomes the call's
+// error. A share (shared: part= under several processes) raises the same error on every process, or none does,
+// and the shares and the map must agree across the processes (ranks.hpp). FreeFEM copies the compressed rows
+// (set(..., tcsr=1)); they stay the assembly's.
+template <class Prepare>
+AnyType coupling_result(Stack stack, bool shared, Prepare&& prepare) {
+  last_error().clear();
+  std::string failure;
+  dlmfsi::CouplingOptions opt;
+  const dlmfsi::CsrMatrix* matrix = nullptr;
+  std::uint64_t checksum = 0;
+  try {
+    matrix = prepare(opt, checksum);
+  } catch (...) {
+    failure = current_message();
+  }
+  if (shared) failure = agree(failure.empty() ? opt.part : -1, failure.empty() ? opt.parts : -1, failure, checksum);
+  if (!failure.empty()) fail(failure);
+  const dlmfsi::CsrMatrix& b = *matrix;
+  MatriceMorse<double>* pa = new MatriceMorse<double>(b.rows, b.cols, 0, 0);
+  pa->set(b.rows, b.cols, 0, b.value.size(), const_cast<int*>(b.start.data()), const_cast<int*>(b.column.data()),
+          const_cast<double*>(b.value.data()), 0, 1);
+  return SetAny<newpMatrice_Creuse<double> >(newpMatrice_Creuse<double>(stack, pa));
 }
 
 }  // namespace dlmfsi_ff

@@ -252,30 +252,12 @@ const dlmfsi::CsrMatrix& DlmfsiOp::assemble(Stack stack, const dlmfsi::CouplingO
 }
 
 AnyType DlmfsiOp::operator()(Stack stack) const {
-  dlmfsi_ff::last_error().clear();
-  std::string failure;
-  dlmfsi::CouplingOptions opt;
-  const dlmfsi::CsrMatrix* matrix = nullptr;
   const bool shared = named.given(Args::kPart) && dlmfsi_ff::distributed();
-  std::uint64_t checksum = 0;
-  try {
+  return dlmfsi_ff::coupling_result(stack, shared, [&](dlmfsi::CouplingOptions& opt, std::uint64_t& checksum) {
     opt = options(stack);
     if (shared) checksum = map_checksum(stack);
-    matrix = &assemble(stack, opt);
-  } catch (...) {
-    failure = dlmfsi_ff::current_message();
-  }
-  // A share of a distributed assembly: every process raises the same error, or none does; the shares and the
-  // map must be the same on every process.
-  if (shared)
-    failure = dlmfsi_ff::agree(failure.empty() ? opt.part : -1, failure.empty() ? opt.parts : -1, failure, checksum);
-  if (!failure.empty()) dlmfsi_ff::fail(failure);
-  // FreeFEM copies the compressed rows (set(..., tcsr=1)); they stay the assembly's.
-  const dlmfsi::CsrMatrix& b = *matrix;
-  MatriceMorse<double>* pa = new MatriceMorse<double>(b.rows, b.cols, 0, 0);
-  pa->set(b.rows, b.cols, 0, b.value.size(), const_cast<int*>(b.start.data()), const_cast<int*>(b.column.data()),
-          const_cast<double*>(b.value.data()), 0, 1);
-  return SetAny<newpMatrice_Creuse<double> >(newpMatrice_Creuse<double>(stack, pa));
+    return &assemble(stack, opt);
+  });
 }
 
 // dlmfsi on spaces that are not 2D (3D volume, surface or curve meshes): a catchable error at run time
