@@ -239,8 +239,8 @@ const CsrMatrix& CouplingAssembly::assemble_checked(const FluidSide& fluid, cons
   // entries off its pattern as triplets; rows that several threads meet are summed afterwards, in order.
   const int size = solid.mesh().size();
   const std::vector<int>& elements =
-      share_in_order(solid, static_cast<int>(static_cast<long long>(size) * opt.part / opt.parts),
-                     static_cast<int>(static_cast<long long>(size) * (opt.part + 1) / opt.parts), share_);
+      share_in_order(solid, static_cast<int>(share_first(size, opt.part, opt.parts)),
+                     static_cast<int>(share_first(size, opt.part + 1, opt.parts)), share_);
   InPlaceSum* const in_place = matrix_.sum_on_last_pattern(rows, fluid.space().dof_count());
   if (in_place) {
     const long later_for[4] = {solid.serial(), opt.part, opt.parts, threads};

@@ -13,6 +13,7 @@
 #include "integration/local_block.hpp"
 #include "geometry/predicates3d.hpp"
 #include "parallel/run_shares.hpp"
+#include "parallel/shares.hpp"
 #include "sides/side_serial.hpp"
 #include "sides/validation.hpp"
 
@@ -109,9 +110,7 @@ std::vector<int> share_in_order(const SolidSide3& solid, int first, int last) {
   return out;
 }
 
-
 }  // namespace
-
 
 // A thread's memory kept across calls: its search (kept_search.hpp).
 struct CouplingAssembly3::Thread : KeptSearch<FluidSearch3, FluidSide3> {};
@@ -132,10 +131,9 @@ const CsrMatrix& CouplingAssembly3::assemble(const FluidSide3& fluid, const Soli
   check_options(fluid.space(), solid.space(), opt);
   if (opt.fluid_components != fluid.components()) throw Error("the fluid side was prepared for other components");
   if (opt.solid_components != solid.components()) throw Error("the solid side was prepared for other components");
-  if (opt.parts < 1 || opt.part < 0 || opt.part >= opt.parts) throw Error("part must lie in [0, parts)");
-  const int nt = solid.mesh().size();
-  const int first = static_cast<int>(static_cast<long long>(nt) * opt.part / opt.parts);
-  const int last = static_cast<int>(static_cast<long long>(nt) * (opt.part + 1) / opt.parts);
+  const int nt = solid.mesh().size();  // part checked by check_options
+  const int first = static_cast<int>(share_first(nt, opt.part, opt.parts));
+  const int last = static_cast<int>(share_first(nt, opt.part + 1, opt.parts));
 
   CouplingReport total;
   total.dimension = 3;

@@ -10,12 +10,6 @@
 
 namespace dlmfsi {
 
-namespace {
-
-std::string name(int k) { return "solid tetrahedron " + std::to_string(k); }
-
-}  // namespace
-
 void TetrahedronMap::polynomial(Point3 xi, Point3& x, Point3 d[3], int first) const {
   const int nm = monomial_count3(degree_);
   double v[monomial_count3(kMaxDegree)];
@@ -74,9 +68,9 @@ void TetrahedronMap::fit(const Mesh3& solid_mesh, const SolidMap3& map, int kk) 
   solid_mesh.corners(k, solid);
   const Point3 e1 = solid[1] - solid[0], e2 = solid[2] - solid[0], e3 = solid[3] - solid[0];
   if (orient3d(solid[0], solid[1], solid[2], solid[3]) <= 0)
-    throw Error(name(k) + " is flat or negatively oriented in the solid mesh");
+    throw Error(name() + " is flat or negatively oriented in the solid mesh");
   const double det = dot(e1, cross(e2, e3));
-  check_tetrahedron_size(det, name(k), "solid");
+  check_tetrahedron_size(det, name(), "solid");
   inverse_of_columns(e1, e2, e3, inv_);
 
   degree_ = map.degree();
@@ -100,7 +94,7 @@ void TetrahedronMap::fit(const Mesh3& solid_mesh, const SolidMap3& map, int kk) 
     }
     for (int a = 0; a < 3; ++a)
       for (int m = 0; m < n; ++m)
-        if (!std::isfinite(c_[a][m])) throw Error("the map is NaN or Inf in " + name(k));
+        if (!std::isfinite(c_[a][m])) throw Error("the map is NaN or Inf in " + name());
   }
 }
 

@@ -1,6 +1,8 @@
 // X on one solid tetrahedron, in the tetrahedron's reference coordinates xi: s = s0 + xi1 e1 + xi2 e2 + xi3 e3
 // with e_i = s_i - s0 (the counterpart of element_map.hpp's TriangleMap).
 #pragma once
+#include <string>
+
 #include "fe/lattice3d.hpp"
 #include "map/solid_map3d.hpp"
 #include "mesh/mesh3d.hpp"
@@ -30,6 +32,9 @@ class TetrahedronMap {
   // X and its reference-coordinate derivatives d[i] = dX/dxi_i at xi (of the fitted polynomial, or of the
   // map itself when its degree is unknown).
   void reference_derivatives(Point3 xi, Point3& x, Point3 d[3]) const;
+
+  // "solid tetrahedron k", for error messages.
+  std::string name() const { return "solid tetrahedron " + std::to_string(k); }
   // X at reference corner 0, the fitted polynomial's constant term (fitted_degree() >= 1).
   Point3 origin() const { return {c_[0][0], c_[1][0], c_[2][0]}; }
   // X(xi) - origin() (the constant term left out: to the relative precision of the tetrahedron's image

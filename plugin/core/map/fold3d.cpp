@@ -198,9 +198,9 @@ void check_fold(const TetrahedronMap& mt) {
   char at[160];
   std::snprintf(at, sizeof at, " at reference point (%.3g, %.3g, %.3g)", where.x, where.y, where.z);
   if (sign == JacobianSign::Folds)
-    throw Error("the map folds solid tetrahedron " + std::to_string(mt.k) +
+    throw Error("the map folds " + mt.name() +
                 " (its jacobian determinant is not positive" + at + ")");
-  throw Error("the map nearly folds solid tetrahedron " + std::to_string(mt.k) +
+  throw Error("the map nearly folds " + mt.name() +
               " (its jacobian determinant comes within about 1e-6 of zero" + at +
               ", or its certification needs more than " + std::to_string(kFoldTetrahedra) + " sub-tetrahedra)");
 }

@@ -15,8 +15,6 @@ namespace {
 
 bool finite(Point3 p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
-std::string name(int k) { return "solid tetrahedron " + std::to_string(k); }
-
 const Point3 kCorners[4] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
 
 }  // namespace
@@ -26,10 +24,10 @@ void MappedTet::prepare(const Mesh3& solid_mesh, const SolidMap3& map, int kk) {
   if (!map.corners(k, image))
     for (int i = 0; i < 4; ++i) image[i] = degree_ >= 1 ? at(kCorners[i]).x : map.evaluate(k, kCorners[i]).x;
   for (int i = 0; i < 4; ++i)
-    if (!finite(image[i])) throw Error("the map is NaN or Inf at a corner of " + name(k));
+    if (!finite(image[i])) throw Error("the map is NaN or Inf at a corner of " + name());
   const int o = orient3d(image[0], image[1], image[2], image[3]);
-  if (o == 0) throw Error("the map flattens " + name(k) + " (its image has zero volume)");
-  if (o < 0) throw Error("the map inverts " + name(k) + " (its image is negatively oriented: a reflection or a fold)");
+  if (o == 0) throw Error("the map flattens " + name() + " (its image has zero volume)");
+  if (o < 0) throw Error("the map inverts " + name() + " (its image is negatively oriented: a reflection or a fold)");
   const Point3 f1 = image[1] - image[0], f2 = image[2] - image[0], f3 = image[3] - image[0];
   inverse_of_columns(f1, f2, f3, image_inv_);
   if (degree_ == 1) {  // a P1 map: affine by construction
@@ -45,7 +43,7 @@ void MappedTet::prepare(const Mesh3& solid_mesh, const SolidMap3& map, int kk) {
     affine_value.x = image[0];
     set_jacobian(f, affine_value);
     affine_det = det3(affine_value.jac);
-    if (!(affine_det > 0)) throw Error("the map flattens " + name(k));
+    if (!(affine_det > 0)) throw Error("the map flattens " + name());
   }
 }
 
@@ -88,7 +86,7 @@ void MappedTet::classify() {
   auto deviation = [&](Point3 xi) {
     Point3 x, d[3];
     reference_derivatives(xi, x, d);
-    if (!finite(x)) throw Error("the map is NaN or Inf inside " + name(k));
+    if (!finite(x)) throw Error("the map is NaN or Inf inside " + name());
     const Point3 line = from_reference(image, xi);
     const double dev = std::fabs(x.x - line.x) + std::fabs(x.y - line.y) + std::fabs(x.z - line.z);
     if (dev > tol) affine = false;

@@ -7,12 +7,6 @@
 
 namespace dlmfsi {
 
-namespace {
-
-std::string name(int k) { return "solid tetrahedron " + std::to_string(k); }
-
-}  // namespace
-
 Point3 pull_back(const MappedTet& mt, Point3 y, Point3 xi, MapValue3& value) {
   if (mt.affine) {
     value = mt.affine_value;
@@ -48,7 +42,7 @@ Point3 pull_back(const MappedTet& mt, Point3 y, Point3 xi, MapValue3& value) {
     Point3 x, d[3];
     evaluate(xi, x, d);
     const double det = dot(d[0], cross(d[1], d[2]));
-    if (!(det > 0)) throw Error("the map folds " + name(mt.k) + " (jacobian determinant " + std::to_string(det) + ")");
+    if (!(det > 0)) throw Error("the map folds " + mt.name() + " (jacobian determinant " + std::to_string(det) + ")");
     const Point3 r = y_o - x;
     // Cramer: step = [d1 d2 d3]^-1 r
     const Point3 step{dot(r, cross(d[1], d[2])) / det, dot(d[0], cross(r, d[2])) / det,
@@ -67,7 +61,7 @@ Point3 pull_back(const MappedTet& mt, Point3 y, Point3 xi, MapValue3& value) {
     }
     previous = size;
   }
-  throw Error("Newton's method did not converge pulling a point back into " + name(mt.k));
+  throw Error("Newton's method did not converge pulling a point back into " + mt.name());
 }
 
 }  // namespace dlmfsi
