@@ -5,8 +5,10 @@
 #include <cstdint>
 #include <cstdlib>
 #include <exception>
+#include <initializer_list>
 #include <string>
 
+#include "errors.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/mesh3d.hpp"
 #include "ranks.hpp"
@@ -98,6 +100,21 @@ AnyType guarded(Body&& body) {
     failure = current_message();
   }
   fail(failure);
+}
+
+// The checksum (ranks.hpp) of a map's FE functions' coefficient arrays, in order, each with its component:
+// Pfe is pfer (2D) or pf3r (3D); name ("[X, Y]") for the error on a function without values.
+template <class Pfe>
+std::uint64_t map_checksum(Stack stack, std::initializer_list<Expression> map, const char* name) {
+  std::uint64_t h = 0;
+  for (Expression e : map) {
+    const Pfe p = GetAny<Pfe>((*e)(stack));
+    if (!p.first || !p.first->x())
+      throw dlmfsi::Error(std::string("the map ") + name + " holds a finite element function without values");
+    const KN<double>& c = *p.first->x();
+    h = checksum(c.n ? &c[0] : nullptr, static_cast<std::size_t>(c.n), h ^ static_cast<std::uint64_t>(p.second));
+  }
+  return h;
 }
 
 // The matrix of one coupling call handed to FreeFEM: prepare(opt, checksum) reads the options (and, for a share of

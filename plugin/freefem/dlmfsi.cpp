@@ -203,14 +203,7 @@ dlmfsi::CouplingOptions DlmfsiOp::options(Stack stack) const {
 // The checksum of the map's coefficient arrays (X's, then Y's, each with its component), which every process
 // of a distributed assembly compares.
 std::uint64_t DlmfsiOp::map_checksum(Stack stack) const {
-  std::uint64_t h = 0;
-  for (Expression e : {map_x, map_y}) {
-    const pfer p = GetAny<pfer>((*e)(stack));
-    if (!p.first || !p.first->x()) throw dlmfsi::Error("the map [X, Y] holds a finite element function without values");
-    const KN<double>& c = *p.first->x();
-    h = dlmfsi_ff::checksum(c.n ? &c[0] : nullptr, static_cast<std::size_t>(c.n), h ^ static_cast<std::uint64_t>(p.second));
-  }
-  return h;
+  return dlmfsi_ff::map_checksum<pfer>(stack, {map_x, map_y}, "[X, Y]");
 }
 
 const dlmfsi::CsrMatrix& DlmfsiOp::assemble(Stack stack, const dlmfsi::CouplingOptions& opt) const {

@@ -167,14 +167,7 @@ dlmfsi::CouplingOptions Dlmfsi3Op::options(Stack stack) const {
 // The checksum of the map's coefficient arrays (X's, Y's, then Z's, each with its component), which every
 // process of a distributed assembly compares.
 std::uint64_t Dlmfsi3Op::map_checksum(Stack stack) const {
-  std::uint64_t h = 0;
-  for (int a = 0; a < 3; ++a) {
-    const pf3r p = GetAny<pf3r>((*map[a])(stack));
-    if (!p.first || !p.first->x()) throw dlmfsi::Error("the map [X, Y, Z] holds a finite element function without values");
-    const KN<double>& c = *p.first->x();
-    h = dlmfsi_ff::checksum(c.n ? &c[0] : nullptr, static_cast<std::size_t>(c.n), h ^ static_cast<std::uint64_t>(p.second));
-  }
-  return h;
+  return dlmfsi_ff::map_checksum<pf3r>(stack, {map[0], map[1], map[2]}, "[X, Y, Z]");
 }
 
 const dlmfsi::CsrMatrix& Dlmfsi3Op::assemble(Stack stack, const dlmfsi::CouplingOptions& opt) const {
