@@ -35,12 +35,16 @@ compare: deps build
 # Assembly speed over a sweep of sizes (built-in vs dlmfsi, threads, cost per piece, peak memory):
 # CSV + PNG under $(OUT)/bench; then the rotating disk on 1 and 2 processes (time per step split into
 # assembly, analysis, factorization and solve, peak memory per process) under $(OUT)/bench-mpi when the
-# distributed solve is built, at n = 5 and 30 (3 times) and n = 60 (once, 20 minutes, 7.7 GB peak). About 30 + 80
-# minutes; QUICK=1 for tiny sizes.
+# distributed solve is built, at n = 5 and 30 (3 times) and n = 60 (once, 20 minutes, 7.7 GB peak). About 45 + 80
+# minutes; QUICK=1 for tiny sizes. STAGES="calls sweep core 3d fluid-step mpi" runs some of them (scripts/bench's
+# docstring; calls: the first and next calls against the built-in, $(OUT)/bench/calls.md, about 10 minutes).
 bench: deps build
 	@cmake --build $(BUILD) --target coupling_bench coupling3d_bench -j $(JOBS)
-	DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) QUICK=$(QUICK) scripts/bench
-	@if [ -f $(BUILD)/plugin/dlmfsi_mumps.so ]; then \
+	@if [ -z "$(STAGES)" ] || [ -n "$(filter-out mpi,$(STAGES))" ]; then \
+	  echo "DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) QUICK=$(QUICK) scripts/bench $(filter-out mpi,$(STAGES))"; \
+	  DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) QUICK=$(QUICK) scripts/bench $(filter-out mpi,$(STAGES)); fi
+	@if [ -n "$(STAGES)" ] && [ -z "$(filter mpi,$(STAGES))" ]; then echo "STAGES=\"$(STAGES)\": scripts/bench-mpi skipped"; \
+	elif [ -f $(BUILD)/plugin/dlmfsi_mumps.so ]; then \
 	  echo "DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) QUICK=$(QUICK) scripts/bench-mpi"; \
 	  DLMFSI_BUILD=$(abspath $(BUILD)) OUT=$(abspath $(OUT)) QUICK=$(QUICK) scripts/bench-mpi; \
 	else echo "note: no $(BUILD)/plugin/dlmfsi_mumps.so (libmumps-dev missing): scripts/bench-mpi skipped"; fi
