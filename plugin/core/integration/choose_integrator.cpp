@@ -1,5 +1,6 @@
 #include "integration/choose_integrator.hpp"
 
+#include "integration/curved_method.hpp"
 #include "integration/exact_method.hpp"
 #include "integration/integrate_batch.hpp"
 #include "integration/integrate_moments.hpp"
@@ -21,8 +22,12 @@ std::unique_ptr<TriangleIntegrator> choose_integrator(const Integrand& integrand
   else
     general = std::make_unique<PointIntegrator>(integrand, counts);
   if (batch && MomentIntegrator::applies(integrand)) affine = std::make_unique<MomentIntegrator>(integrand, counts);
-  return std::make_unique<ExactMethod>(fluid, search, integrand.product_degree, options.qforder, options.subdivide,
-                                       std::move(general), std::move(affine), counts);
+  auto straight = std::make_unique<ExactMethod>(fluid, search, integrand.product_degree, options.qforder,
+                                                options.subdivide, std::move(general), std::move(affine), counts);
+  // Curved images bounded by their true edges, unless chords (subdivide) or a rule degree (qforder) are asked.
+  if (options.subdivide < 0 && options.qforder < 0 && CurvedMethod::applies(integrand, map.degree()))
+    return std::make_unique<CurvedMethod>(fluid, integrand, std::move(straight), counts);
+  return straight;
 }
 
 }  // namespace dlmfsi

@@ -1,0 +1,308 @@
+#include "integration/curved_method.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "errors.hpp"
+#include "fe/rules.hpp"
+#include "geometry/polynomial_roots.hpp"
+#include "sides/report.hpp"
+#include "sides/sides.hpp"
+
+namespace dlmfsi {
+
+namespace {
+
+// xi with X(xi) - origin = w, by Newton's method from xi; d1, d2: dX/dxi there. False where an iterate
+// meets det dX/dxi <= 0 or strays far from the triangle, or 60 iterations do not settle (w beyond the
+// image, where the polynomial map may fold).
+bool invert(const MappedTriangle& mt, Point w, Point& xi, Point& d1, Point& d2) {
+  double last = HUGE_VAL;
+  for (int it = 0; it < 60; ++it) {
+    Point x;
+    mt.displacement(xi, x, d1, d2);
+    const double det = cross(d1, d2);
+    if (!(det > 0)) return false;
+    const Point r = w - x;
+    const Point step{cross(r, d2) / det, cross(d1, r) / det};
+    xi = xi + step;
+    if (!(std::fabs(xi.x) + std::fabs(xi.y) < 8)) return false;
+    const double size = std::fabs(step.x) + std::fabs(step.y);
+    // converged, or stalled at the round-off floor
+    if (size <= 1e-15 || (size < 1e-10 && size >= 0.5 * last)) {
+      mt.displacement(xi, x, d1, d2);
+      return true;
+    }
+    last = size;
+  }
+  return false;
+}
+
+double least_barycentric(Point xi) { return std::min(std::min(xi.x, xi.y), 1 - xi.x - xi.y); }
+
+}  // namespace
+
+CurvedMethod::CurvedMethod(const FluidSide& fluid, const Integrand& integrand,
+                           std::unique_ptr<TriangleIntegrator> straight, CouplingReport& counts)
+    : fluid_(fluid), integrand_(integrand), points_(integrand, counts), straight_(std::move(straight)),
+      counts_(counts), stamp_of_(fluid.mesh().size(), 0u) {}
+
+bool CurvedMethod::applies(const Integrand& integrand, int map_degree) {
+  return integrand.fluid.fitted() && integrand.multiplier.fitted() && integrand.fluid_degree >= 0 &&
+         integrand.multiplier_degree >= 0 && map_degree >= 1 && map_degree <= kMaxPolynomialMapDegree;
+}
+
+double CurvedMethod::integrate(const MappedTriangle& mt, LocalBlock& block) {
+  if (mt.affine || !mt.fitted()) return straight_->integrate(mt, block);
+  const int d = mt.degree();
+  const int degree = integrand_.multiplier_degree + integrand_.fluid_degree * d;
+  if (degree != degree_) {
+    degree_ = degree;
+    gauss_legendre((degree + 3) / 2, edge_nodes_, edge_weights_);                     // degree + 1 along edges
+    gauss_legendre((degree + 3) / 2 + kArcExtraPoints, arc_nodes_, arc_weights_);
+    gauss_legendre((degree + 2) / 2, inner_nodes_, inner_weights_);                   // degree across
+  }
+  edges_.set(mt);
+  for (int i = 0, s = 0; i <= 4; ++i)
+    for (int j = 0; i + j <= 4; ++j, ++s) {
+      sample_xi_[s] = {i / 4.0, j / 4.0};
+      Point d1, d2;
+      mt.displacement(sample_xi_[s], sample_x_[s], d1, d2);
+    }
+  if (++stamp_ == 0) {
+    std::fill(stamp_of_.begin(), stamp_of_.end(), 0u);
+    stamp_ = 1;
+  }
+  candidates_.clear();
+  fluid_.grid().for_each_in_box(mt.origin() + edges_.lo, mt.origin() + edges_.hi, [&](int k) {
+    if (stamp_of_[k] == stamp_) return;
+    stamp_of_[k] = stamp_;
+    candidates_.push_back(k);
+  });
+  double covered = 0;
+  for (int k : candidates_) covered += piece(mt, k, block);
+  // the image's area: int_T det dX/dxi, a polynomial of degree 2 (d - 1)
+  double area = 0;
+  for (const RulePoint& q : triangle_rule(2 * (d - 1))) {
+    Point x, d1, d2;
+    mt.displacement(q.xi, x, d1, d2);
+    area += 0.5 * q.weight * cross(d1, d2);
+  }
+  const double outside = area - covered;
+  return std::fabs(outside) <= 1e-12 * area ? 0 : outside;
+}
+
+double CurvedMethod::piece(const MappedTriangle& mt, int kf, LocalBlock& block) {
+  const Mesh& mesh = fluid_.mesh();
+  const Point origin = mt.origin();
+  Point w[3], e[3];
+  for (int j = 0; j < 3; ++j) w[j] = mesh.vertex(kf, j) - origin;
+  for (int j = 0; j < 3; ++j) e[j] = w[(j + 1) % 3] - w[j];
+  const Point lo = edges_.lo, hi = edges_.hi;
+  if (std::max({w[0].x, w[1].x, w[2].x}) < lo.x || std::min({w[0].x, w[1].x, w[2].x}) > hi.x ||
+      std::max({w[0].y, w[1].y, w[2].y}) < lo.y || std::min({w[0].y, w[1].y, w[2].y}) > hi.y)
+    return 0;
+  const int d = edges_.degree;
+  const double extent = std::max(hi.x - lo.x, hi.y - lo.y);
+  // Line j of K (inside on the left): h_j(y) = e_j x (y - w_j). Along image edge i, q[i][j](t) = h_j(X(xi(t))).
+  double q[3][3][kMaxPolynomialMapDegree + 1];
+  bool coincident[3][3];
+  double at_corner[3][3];  // h_j at the image of T's corner c, [j][c]: the same number for both its edges
+  for (int j = 0; j < 3; ++j) {
+    const double scale = 1e-13 * (std::fabs(e[j].x) + std::fabs(e[j].y)) * extent;
+    for (int i = 0; i < 3; ++i) {
+      double sum = 0;
+      for (int k = 0; k <= d; ++k) {
+        q[i][j][k] = cross(e[j], k == 0 ? edges_.coefficient[i][0] - w[j] : edges_.coefficient[i][k]);
+        sum += std::fabs(q[i][j][k]);
+      }
+      coincident[i][j] = sum <= scale;
+      at_corner[j][i] = q[i][j][0];
+    }
+  }
+  // The crossings: breakpoints on T's edges, and on K's edges with their reference points.
+  double breaks[3][3 * kMaxRootsDegree + 2];
+  int nbreaks[3] = {0, 0, 0};
+  for (int j = 0; j < 3; ++j) crossings_[j].clear();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      if (coincident[i][j]) continue;
+      double roots[kMaxRootsDegree];
+      const int n = roots_in(q[i][j], d, 0, 1, at_corner[j][i], at_corner[j][(i + 1) % 3], roots);
+      for (int r = 0; r < n; ++r) {
+        breaks[i][nbreaks[i]++] = roots[r];
+        const Point x = edges_.at(i, roots[r]) - w[j];
+        const double tau = (x.x * e[j].x + x.y * e[j].y) / (e[j].x * e[j].x + e[j].y * e[j].y);
+        if (tau >= -1e-13 && tau <= 1 + 1e-13)
+          crossings_[j].push_back({std::min(1.0, std::max(0.0, tau)),
+                                   ImageEdges::start(i) + roots[r] * ImageEdges::direction(i)});
+      }
+    }
+  boundary_.clear();
+  // T's edges 1 and 2 (edge 0, xi2 = 0, has no share of ∮ G dxi2).
+  for (int i = 1; i < 3; ++i) {
+    double* b = breaks[i];
+    int n = nbreaks[i];
+    b[n++] = 0;
+    b[n++] = 1;
+    std::sort(b, b + n);
+    const Point start = ImageEdges::start(i), direction = ImageEdges::direction(i);
+    for (int s = 0; s + 1 < n; ++s) {
+      const double ta = b[s], tb = b[s + 1];
+      if (!(tb > ta)) continue;
+      const double tm = 0.5 * (ta + tb);
+      bool in = true;
+      for (int j = 0; j < 3 && in; ++j) {
+        if (coincident[i][j]) {  // along K's edge j: counted where T and K lie on the same side
+          const Point tangent = edges_.tangent(i, tm);
+          in = tangent.x * e[j].x + tangent.y * e[j].y > 0;
+        } else {
+          in = polynomial_value(q[i][j], d, tm) >= 0;
+        }
+      }
+      if (!in) continue;
+      for (size_t g = 0; g < edge_nodes_.size(); ++g)
+        boundary_.push_back({start + (ta + (tb - ta) * edge_nodes_[g]) * direction,
+                             edge_weights_[g] * (tb - ta) * direction.y});
+    }
+  }
+  // K's edges, where inside X(T).
+  for (int j = 0; j < 3; ++j) {
+    bool along_image = false;
+    for (int i = 0; i < 3; ++i) along_image = along_image || coincident[i][j];
+    // on an image edge (coincident boundaries) a point is not inside: T's edge carries that part
+    const double margin = along_image ? 1e-9 : 0;
+    std::vector<Crossing>& c = crossings_[j];
+    const Point unknown{NAN, NAN};
+    c.push_back({0, unknown});
+    c.push_back({1, unknown});
+    std::sort(c.begin(), c.end(), [](const Crossing& a, const Crossing& b) { return a.tau < b.tau; });
+    for (size_t s = 0; s + 1 < c.size(); ++s) {
+      const Crossing a = c[s], b = c[s + 1];
+      if (!(b.tau > a.tau)) continue;
+      const Point wm = w[j] + 0.5 * (a.tau + b.tau) * e[j];
+      if (wm.x < lo.x || wm.x > hi.x || wm.y < lo.y || wm.y > hi.y) continue;
+      const bool known_a = !std::isnan(a.xi.x), known_b = !std::isnan(b.xi.x);
+      Point guess = known_a && known_b ? 0.5 * (a.xi + b.xi) : known_a ? a.xi : known_b ? b.xi : Point{-1, -1};
+      Point xm;
+      if (!inside_image(mt, wm, guess, margin, xm)) continue;
+      auto end = [&](const Crossing& cr) {
+        if (!std::isnan(cr.xi.x)) return cr.xi;
+        Point xi = xm, d1, d2;
+        if (!invert(mt, w[j] + cr.tau * e[j], xi, d1, d2))
+          throw Error("could not pull a fluid vertex back into " + mt.name() + " (Newton's method)");
+        return xi;
+      };
+      arc(mt, w[j], e[j], a.tau, b.tau, end(a), end(b));
+    }
+  }
+  if (boundary_.empty()) return 0;
+  double a = HUGE_VAL;
+  for (const BoundaryPoint& p : boundary_) a = std::min(a, p.xi.x);
+  block.enter_fluid_element(fluid_.dofs(kf));
+  ++counts_.pieces;
+  const double solid_jacobian = area2(mt.solid[0], mt.solid[1], mt.solid[2]);  // ds = this dxi
+  double area = 0;
+  for (const BoundaryPoint& p : boundary_) {
+    const double h = p.xi.x - a;
+    if (h == 0 || p.weight == 0) continue;
+    for (size_t r = 0; r < inner_nodes_.size(); ++r) {
+      const Point xi{a + h * inner_nodes_[r], p.xi.y};
+      const double weight = p.weight * h * inner_weights_[r];
+      Point x, d1, d2;
+      mt.polynomial(xi, x, d1, d2);
+      MapValue value;
+      mt.set_jacobian(d1, d2, value);
+      points_.add_point(kf, x, mt.k, xi, weight * solid_jacobian, value.jac, block);
+      area += weight * cross(d1, d2);
+    }
+  }
+  return area;
+}
+
+void CurvedMethod::arc(const MappedTriangle& mt, Point w0, Point e, double ta, double tb, Point xa, Point xb) {
+  struct Segment {
+    double ta, tb;
+    Point xa, xb;
+    int depth;
+    std::vector<BoundaryPoint> points;  // its Gauss rule's
+  };
+  auto fail = [&]() { return Error("could not pull a fluid edge back into " + mt.name() + " (Newton's method)"); };
+  std::vector<Segment> stack(1);
+  stack[0] = {ta, tb, xa, xb, 0, {}};
+  if (!arc_rule(mt, w0, e, ta, tb, xa, xb, stack[0].points)) throw fail();
+  while (!stack.empty()) {
+    Segment s = std::move(stack.back());
+    stack.pop_back();
+    const double tm = 0.5 * (s.ta + s.tb);
+    Point xm = 0.5 * (s.xa + s.xb), d1, d2;
+    if (!invert(mt, w0 + tm * e, xm, d1, d2)) throw fail();
+    Segment left{s.ta, tm, s.xa, xm, s.depth + 1, {}}, right{tm, s.tb, xm, s.xb, s.depth + 1, {}};
+    if (!arc_rule(mt, w0, e, s.ta, tm, s.xa, xm, left.points) || !arc_rule(mt, w0, e, tm, s.tb, xm, s.xb, right.points))
+      throw fail();
+    // the whole's and the halves' moments relative to s.xa, of degree 1, degree + 1 and degree + 1 in both
+    // coordinates (k = 1, degree + 1, degree + 1), against the size of such a moment on this arc, L^(k+1),
+    // and the round-off of the points' reference coordinates (about eps), eps L^k
+    double whole[3] = {0, 0, 0}, halves[3] = {0, 0, 0};
+    add_moments(s.points, s.xa, whole);
+    add_moments(left.points, s.xa, halves);
+    add_moments(right.points, s.xa, halves);
+    const double length = std::max(std::fabs(s.xb.x - s.xa.x) + std::fabs(s.xb.y - s.xa.y), 1e-300);
+    const double high = std::pow(length, degree_ + 1);
+    const double tolerance[3] = {(kArcTolerance * length + kArcRoundOff) * length,
+                                 (kArcTolerance * length + kArcRoundOff) * high,
+                                 (kArcTolerance * length + kArcRoundOff) * high};
+    bool agree = true;
+    for (int k = 0; k < 3; ++k) agree = agree && std::fabs(whole[k] - halves[k]) <= tolerance[k];
+    if (agree || s.depth + 1 >= kMaxArcDepth) {
+      boundary_.insert(boundary_.end(), left.points.begin(), left.points.end());
+      boundary_.insert(boundary_.end(), right.points.begin(), right.points.end());
+      continue;
+    }
+    stack.push_back(std::move(left));
+    stack.push_back(std::move(right));
+  }
+}
+
+bool CurvedMethod::arc_rule(const MappedTriangle& mt, Point w0, Point e, double ta, double tb, Point xa, Point xb,
+                            std::vector<BoundaryPoint>& points) const {
+  points.clear();
+  for (size_t g = 0; g < arc_nodes_.size(); ++g) {
+    const double u = arc_nodes_[g];
+    Point xi = xa + u * (xb - xa), d1, d2;
+    if (!invert(mt, w0 + (ta + (tb - ta) * u) * e, xi, d1, d2)) return false;
+    // dxi/dtau = (dX/dxi)^-1 e: its second component
+    points.push_back({xi, arc_weights_[g] * (tb - ta) * cross(d1, e) / cross(d1, d2)});
+  }
+  return true;
+}
+
+void CurvedMethod::add_moments(const std::vector<BoundaryPoint>& points, Point ref, double moments[3]) const {
+  for (const BoundaryPoint& p : points) {
+    const double a = p.xi.x - ref.x, b = p.xi.y - ref.y;
+    moments[0] += p.weight * a;
+    moments[1] += p.weight * std::pow(a, degree_ + 1);
+    moments[2] += p.weight * a * std::pow(b, degree_);
+  }
+}
+
+bool CurvedMethod::inside_image(const MappedTriangle& mt, Point w, Point guess, double margin, Point& xi) const {
+  Point d1, d2;
+  if (least_barycentric(guess) >= -0.25) {
+    xi = guess;
+    if (invert(mt, w, xi, d1, d2)) return least_barycentric(xi) >= margin;
+  }
+  int nearest = 0;
+  double best = HUGE_VAL;
+  for (int s = 0; s < 15; ++s) {
+    const Point r = sample_x_[s] - w;
+    const double distance = r.x * r.x + r.y * r.y;
+    if (distance < best) best = distance, nearest = s;
+  }
+  xi = sample_xi_[nearest];
+  return invert(mt, w, xi, d1, d2) && least_barycentric(xi) >= margin;
+}
+
+}  // namespace dlmfsi

@@ -1,0 +1,88 @@
+// The exact method on curved images (maps of degree >= 2 and P1b maps), in the solid triangle's reference
+// coordinates xi, with no chords. On a piece P = T ∩ X^-1(K), K a fluid triangle, the integrand
+//   g(xi) = f_ij(s(xi)) |ds/dxi|
+// is a polynomial of degree D = p_multiplier + p_fluid p_map (the fluid's polynomial on K extended beyond K,
+// the multiplier's and the map's on T beyond T). By Green's theorem, with a the smallest xi1 on ∂P,
+//   int_P g dxi = ∮_∂P G dxi2,   G(xi) = int_a^xi1 g(σ, xi2) dσ,
+// G by an m-point Gauss rule on [a, xi1], exact for 2m - 1 >= D. ∂P, counter-clockwise, is made of
+//  - the parts of T's edges whose images lie in K: straight in xi, where G dxi2 is a polynomial of degree
+//    D + 1 in the edge's parameter, integrated by a Gauss rule exact for it;
+//  - the preimages of the parts of K's edges inside X(T): xi(τ) = X^-1(y(τ)) along the edge (Newton), an
+//    analytic curve where det dX/dxi > 0 (certified on T by check_fold), integrated by Gauss rules on
+//    halves of the arc until the halves agree with the whole to round-off (spectral convergence).
+// Both kinds come from the crossings of the image's edges (polynomials in their parameter, image_edges.hpp)
+// with K's lines (roots_in). The parts are never joined into loops: each adds its own share, T lying on the
+// left of its edges and K on the left of its edges (X keeps the orientation), so pieces with several
+// components or holes need nothing special. An image edge along a fluid edge (coincident boundaries)
+// counts once, as T's edge, where T and K lie on the same side of it, and not at all where they lie on
+// opposite sides. The image's area outside the fluid mesh is its area (int_T det dX/dxi, exact) less the
+// pieces'.
+//
+// Affine triangles, and maps or bases that are not polynomials of known degree, go to the straight exact
+// method (exact_method.hpp), which also keeps chords on request (subdivide=).
+#pragma once
+#include <memory>
+#include <vector>
+
+#include "integration/integrate_points.hpp"
+#include "map/image_edges.hpp"
+
+namespace dlmfsi {
+
+class CurvedMethod : public TriangleIntegrator {
+ public:
+  // straight: the method for affine triangles and maps not fitted.
+  CurvedMethod(const FluidSide& fluid, const Integrand& integrand, std::unique_ptr<TriangleIntegrator> straight,
+               CouplingReport& counts);
+  double integrate(const MappedTriangle& mt, LocalBlock& block) override;
+
+  // Polynomial bases of known degrees and a map of known degree (1 to kMaxPolynomialMapDegree).
+  static bool applies(const Integrand& integrand, int map_degree);
+
+  // Gauss points on an arc before its halves are compared (the polynomial part's need and this many more).
+  static constexpr int kArcExtraPoints = 4;
+  // The halves' and the whole's shares of an arc agree to this (relative to the arc's size), or to the
+  // round-off of reference coordinates: accepted.
+  static constexpr double kArcTolerance = 1e-13, kArcRoundOff = 1e-15;
+  static constexpr int kMaxArcDepth = 20;
+
+ private:
+  struct BoundaryPoint {
+    Point xi;
+    double weight;  // its share of ∮ G dxi2: w dxi2/dparameter
+  };
+  struct Crossing {
+    double tau;  // on K's edge
+    Point xi;    // its reference point, on T's edge
+  };
+  // The share of the piece T ∩ X^-1(K) (fluid triangle kf) added to block; returns its image's area.
+  double piece(const MappedTriangle& mt, int kf, LocalBlock& block);
+  // Appends the Gauss points of K's edge from w0 (relative to the map's origin) along e, for tau in
+  // [ta, tb] whose ends have the reference points xa, xb.
+  void arc(const MappedTriangle& mt, Point w0, Point e, double ta, double tb, Point xa, Point xb);
+  // The points of one Gauss rule on [ta, tb] of that edge (false where Newton fails).
+  bool arc_rule(const MappedTriangle& mt, Point w0, Point e, double ta, double tb, Point xa, Point xb,
+                std::vector<BoundaryPoint>& points) const;
+  // Adds the points' shares of three moments relative to ref, to compare rules by.
+  void add_moments(const std::vector<BoundaryPoint>& points, Point ref, double moments[3]) const;
+  // Is w (relative to the map's origin) inside X(T), at least `margin` inside in barycentric terms? xi: its
+  // reference point, from `guess` or the nearest sample when guess is outside the triangle.
+  bool inside_image(const MappedTriangle& mt, Point w, Point guess, double margin, Point& xi) const;
+
+  const FluidSide& fluid_;
+  const Integrand& integrand_;
+  PointIntegrator points_;
+  std::unique_ptr<TriangleIntegrator> straight_;
+  CouplingReport& counts_;
+  int degree_ = -1;  // D, of the rules below
+  std::vector<double> edge_nodes_, edge_weights_, arc_nodes_, arc_weights_, inner_nodes_, inner_weights_;
+  ImageEdges edges_;
+  Point sample_xi_[15], sample_x_[15];  // X - origin on the degree-4 lattice of T: Newton's starts
+  std::vector<unsigned> stamp_of_;      // the fluid triangles met for this triangle
+  std::vector<int> candidates_;
+  unsigned stamp_ = 0;
+  std::vector<BoundaryPoint> boundary_;
+  std::vector<Crossing> crossings_[3];
+};
+
+}  // namespace dlmfsi
