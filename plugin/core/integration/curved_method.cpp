@@ -30,8 +30,9 @@ bool invert(const MappedTriangle& mt, Point w, Point& xi, Point& d1, Point& d2) 
     xi = xi + step;
     if (!(std::fabs(xi.x) + std::fabs(xi.y) < 8)) return false;
     const double size = std::fabs(step.x) + std::fabs(step.y);
-    // converged, or stalled at the round-off floor
-    if (size <= 1e-15 || (size < 1e-10 && size >= 0.5 * last)) {
+    // converged (after a step below 1e-9 the error is about nonlinearity * step^2, below round-off), or
+    // stalled at the round-off floor
+    if (size <= 1e-9 || (size < 1e-7 && size >= 0.5 * last)) {
       mt.displacement(xi, x, d1, d2);
       return true;
     }
@@ -41,6 +42,13 @@ bool invert(const MappedTriangle& mt, Point w, Point& xi, Point& d1, Point& d2) 
 }
 
 double least_barycentric(Point xi) { return std::min(std::min(xi.x, xi.y), 1 - xi.x - xi.y); }
+
+// The Legendre polynomials L_0 .. L_n at u: (i + 1) L_i+1 = (2i + 1) u L_i - i L_i-1.
+void legendre(double u, int n, double* l) {
+  l[0] = 1;
+  if (n >= 1) l[1] = u;
+  for (int i = 1; i < n; ++i) l[i + 1] = ((2 * i + 1) * u * l[i] - i * l[i - 1]) / (i + 1);
+}
 
 }  // namespace
 
@@ -58,11 +66,13 @@ double CurvedMethod::integrate(const MappedTriangle& mt, LocalBlock& block) {
   if (mt.affine || !mt.fitted()) return straight_->integrate(mt, block);
   const int d = mt.degree();
   const int degree = integrand_.multiplier_degree + integrand_.fluid_degree * d;
+  if (degree > kMaxBoxDegree) return straight_->integrate(mt, block);
   if (degree != degree_) {
     degree_ = degree;
     gauss_legendre((degree + 3) / 2, edge_nodes_, edge_weights_);                     // degree + 1 along edges
-    gauss_legendre((degree + 3) / 2 + kArcExtraPoints, arc_nodes_, arc_weights_);
-    gauss_legendre((degree + 2) / 2, inner_nodes_, inner_weights_);                   // degree across
+    for (int extra = 0; extra <= kMaxArcExtraPoints; ++extra)
+      gauss_legendre((degree + 3) / 2 + extra, arc_nodes_[extra], arc_weights_[extra]);
+    padua_rule(degree);
   }
   edges_.set(mt);
   for (int i = 0, s = 0; i <= 4; ++i)
@@ -92,6 +102,57 @@ double CurvedMethod::integrate(const MappedTriangle& mt, LocalBlock& block) {
   }
   const double outside = area - covered;
   return std::fabs(outside) <= 1e-12 * area ? 0 : outside;
+}
+
+void CurvedMethod::padua_rule(int degree) {
+  // Padua points of degree D (first family): (cos(j pi / D), cos(k pi / (D + 1))), j + k even; the centre for D = 0.
+  padua_u_.clear();
+  padua_v_.clear();
+  if (degree == 0) {
+    padua_u_.push_back(0);
+    padua_v_.push_back(0);
+  }
+  const double pi = std::acos(-1.0);
+  for (int j = 0; degree > 0 && j <= degree; ++j)
+    for (int k = 0; k <= degree + 1; ++k)
+      if ((j + k) % 2 == 0) {
+        padua_u_.push_back(std::cos(j * pi / degree));
+        padua_v_.push_back(std::cos(k * pi / (degree + 1)));
+      }
+  // V_(ij),q = L_i(u_q) L_j(v_q), i + j <= D, inverted by Gauss-Jordan elimination with partial pivoting.
+  const int n = static_cast<int>(padua_u_.size());
+  std::vector<double> v(static_cast<size_t>(n) * n), inverse(static_cast<size_t>(n) * n, 0);
+  double lu[kMaxBoxDegree + 2], lv[kMaxBoxDegree + 2];
+  for (int q = 0; q < n; ++q) {
+    legendre(padua_u_[q], degree, lu);
+    legendre(padua_v_[q], degree, lv);
+    for (int i = 0, a = 0; i <= degree; ++i)
+      for (int j = 0; i + j <= degree; ++j, ++a) v[static_cast<size_t>(a) * n + q] = lu[i] * lv[j];
+  }
+  for (int a = 0; a < n; ++a) inverse[static_cast<size_t>(a) * n + a] = 1;
+  for (int c = 0; c < n; ++c) {
+    int pivot = c;
+    for (int r = c + 1; r < n; ++r)
+      if (std::fabs(v[static_cast<size_t>(r) * n + c]) > std::fabs(v[static_cast<size_t>(pivot) * n + c])) pivot = r;
+    for (int k = 0; k < n; ++k) {
+      std::swap(v[static_cast<size_t>(c) * n + k], v[static_cast<size_t>(pivot) * n + k]);
+      std::swap(inverse[static_cast<size_t>(c) * n + k], inverse[static_cast<size_t>(pivot) * n + k]);
+    }
+    const double d = v[static_cast<size_t>(c) * n + c];
+    for (int k = 0; k < n; ++k) {
+      v[static_cast<size_t>(c) * n + k] /= d;
+      inverse[static_cast<size_t>(c) * n + k] /= d;
+    }
+    for (int r = 0; r < n; ++r) {
+      const double f = v[static_cast<size_t>(r) * n + c];
+      if (r == c || f == 0) continue;
+      for (int k = 0; k < n; ++k) {
+        v[static_cast<size_t>(r) * n + k] -= f * v[static_cast<size_t>(c) * n + k];
+        inverse[static_cast<size_t>(r) * n + k] -= f * inverse[static_cast<size_t>(c) * n + k];
+      }
+    }
+  }
+  padua_inverse_.swap(inverse);
 }
 
 double CurvedMethod::piece(const MappedTriangle& mt, int kf, LocalBlock& block) {
@@ -129,6 +190,14 @@ double CurvedMethod::piece(const MappedTriangle& mt, int kf, LocalBlock& block) 
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       if (coincident[i][j]) continue;
+      // all control points strictly on one side: no crossing
+      int above = 0, below = 0;
+      for (int k = 0; k <= d; ++k) {
+        const double h = cross(e[j], edges_.control[i][k] - w[j]);
+        above += h > 0;
+        below += h < 0;
+      }
+      if (above == d + 1 || below == d + 1) continue;
       double roots[kMaxRootsDegree];
       const int n = roots_in(q[i][j], d, 0, 1, at_corner[j][i], at_corner[j][(i + 1) % 3], roots);
       for (int r = 0; r < n; ++r) {
@@ -199,25 +268,46 @@ double CurvedMethod::piece(const MappedTriangle& mt, int kf, LocalBlock& block) 
     }
   }
   if (boundary_.empty()) return 0;
-  double a = HUGE_VAL;
-  for (const BoundaryPoint& p : boundary_) a = std::min(a, p.xi.x);
+  // The piece lies in the box of its boundary, [x0, x1] x [y0, y1]; u, v in [-1, 1] across it.
+  Point low{HUGE_VAL, HUGE_VAL}, high{-HUGE_VAL, -HUGE_VAL};
+  for (const BoundaryPoint& p : boundary_) {
+    low = {std::min(low.x, p.xi.x), std::min(low.y, p.xi.y)};
+    high = {std::max(high.x, p.xi.x), std::max(high.y, p.xi.y)};
+  }
+  const double hx = 0.5 * (high.x - low.x), hy = 0.5 * (high.y - low.y);
+  if (!(hx > 0 && hy > 0)) return 0;  // a segment: no area
+  // The piece's moments of the Legendre products L_i(u) L_j(v), i + j <= D, by Green's theorem:
+  //   M_ij = ∮ hx Λ_i(u) L_j(v) dxi2,   Λ_i(u) = int_-1^u L_i = (L_i+1(u) - L_i-1(u)) / (2i + 1), Λ_0 = u + 1.
+  const int D = degree_, count = static_cast<int>(padua_u_.size());
+  moments_.assign(static_cast<size_t>(D + 1) * (D + 1), 0);
+  double lu[kMaxBoxDegree + 2], lv[kMaxBoxDegree + 2];
+  for (const BoundaryPoint& p : boundary_) {
+    if (p.weight == 0) continue;
+    const double u = (p.xi.x - low.x) / hx - 1, v = (p.xi.y - low.y) / hy - 1;
+    legendre(u, D + 1, lu);
+    legendre(v, D, lv);
+    for (int i = 0; i <= D; ++i) {
+      const double antiderivative = hx * p.weight * (i == 0 ? u + 1 : (lu[i + 1] - lu[i - 1]) / (2 * i + 1));
+      for (int j = 0; i + j <= D; ++j) moments_[static_cast<size_t>(i) * (D + 1) + j] += antiderivative * lv[j];
+    }
+  }
   block.enter_fluid_element(fluid_.dofs(kf));
   ++counts_.pieces;
   const double solid_jacobian = area2(mt.solid[0], mt.solid[1], mt.solid[2]);  // ds = this dxi
   double area = 0;
-  for (const BoundaryPoint& p : boundary_) {
-    const double h = p.xi.x - a;
-    if (h == 0 || p.weight == 0) continue;
-    for (size_t r = 0; r < inner_nodes_.size(); ++r) {
-      const Point xi{a + h * inner_nodes_[r], p.xi.y};
-      const double weight = p.weight * h * inner_weights_[r];
-      Point x, d1, d2;
-      mt.polynomial(xi, x, d1, d2);
-      MapValue value;
-      mt.set_jacobian(d1, d2, value);
-      points_.add_point(kf, x, mt.k, xi, weight * solid_jacobian, value.jac, block);
-      area += weight * cross(d1, d2);
-    }
+  for (int point = 0; point < count; ++point) {
+    // w = sum_ij (V^-1)_point,ij M_ij
+    const double* row = &padua_inverse_[static_cast<size_t>(point) * count];
+    double weight = 0;
+    for (int i = 0, a = 0; i <= D; ++i)
+      for (int j = 0; i + j <= D; ++j, ++a) weight += row[a] * moments_[static_cast<size_t>(i) * (D + 1) + j];
+    const Point xi{low.x + hx * (padua_u_[point] + 1), low.y + hy * (padua_v_[point] + 1)};
+    Point x, d1, d2;
+    mt.polynomial(xi, x, d1, d2);
+    MapValue value;
+    mt.set_jacobian(d1, d2, value);
+    points_.add_point(kf, x, mt.k, xi, weight * solid_jacobian, value.jac, block);
+    area += weight * cross(d1, d2);
   }
   return area;
 }
@@ -230,9 +320,19 @@ void CurvedMethod::arc(const MappedTriangle& mt, Point w0, Point e, double ta, d
     std::vector<BoundaryPoint> points;  // its Gauss rule's
   };
   auto fail = [&]() { return Error("could not pull a fluid edge back into " + mt.name() + " (Newton's method)"); };
+  // Nearly straight arcs: with X's jacobian varying by r = 4 nonlinearity L relative along an arc of length L
+  // (in xi), the rule with `extra` points more than the polynomial part needs leaves about r^(2 extra + 1).
+  const double r = 4 * mt.nonlinearity * (std::fabs(xb.x - xa.x) + std::fabs(xb.y - xa.y));
+  for (int extra = 1; extra <= kMaxArcExtraPoints; ++extra)
+    if (std::pow(r, 2 * extra + 1) <= 1e-17) {
+      if (!arc_rule(mt, w0, e, ta, tb, xa, xb, extra, boundary_points_)) throw fail();
+      boundary_.insert(boundary_.end(), boundary_points_.begin(), boundary_points_.end());
+      return;
+    }
+  // Otherwise halves against the whole until they agree.
   std::vector<Segment> stack(1);
   stack[0] = {ta, tb, xa, xb, 0, {}};
-  if (!arc_rule(mt, w0, e, ta, tb, xa, xb, stack[0].points)) throw fail();
+  if (!arc_rule(mt, w0, e, ta, tb, xa, xb, kArcExtraPoints, stack[0].points)) throw fail();
   while (!stack.empty()) {
     Segment s = std::move(stack.back());
     stack.pop_back();
@@ -240,7 +340,8 @@ void CurvedMethod::arc(const MappedTriangle& mt, Point w0, Point e, double ta, d
     Point xm = 0.5 * (s.xa + s.xb), d1, d2;
     if (!invert(mt, w0 + tm * e, xm, d1, d2)) throw fail();
     Segment left{s.ta, tm, s.xa, xm, s.depth + 1, {}}, right{tm, s.tb, xm, s.xb, s.depth + 1, {}};
-    if (!arc_rule(mt, w0, e, s.ta, tm, s.xa, xm, left.points) || !arc_rule(mt, w0, e, tm, s.tb, xm, s.xb, right.points))
+    if (!arc_rule(mt, w0, e, s.ta, tm, s.xa, xm, kArcExtraPoints, left.points) ||
+        !arc_rule(mt, w0, e, tm, s.tb, xm, s.xb, kArcExtraPoints, right.points))
       throw fail();
     // the whole's and the halves' moments relative to s.xa, of degree 1, degree + 1 and degree + 1 in both
     // coordinates (k = 1, degree + 1, degree + 1), against the size of such a moment on this arc, L^(k+1),
@@ -267,14 +368,15 @@ void CurvedMethod::arc(const MappedTriangle& mt, Point w0, Point e, double ta, d
 }
 
 bool CurvedMethod::arc_rule(const MappedTriangle& mt, Point w0, Point e, double ta, double tb, Point xa, Point xb,
-                            std::vector<BoundaryPoint>& points) const {
+                            int extra, std::vector<BoundaryPoint>& points) const {
   points.clear();
-  for (size_t g = 0; g < arc_nodes_.size(); ++g) {
-    const double u = arc_nodes_[g];
+  const std::vector<double>&nodes = arc_nodes_[extra], &weights = arc_weights_[extra];
+  for (size_t g = 0; g < nodes.size(); ++g) {
+    const double u = nodes[g];
     Point xi = xa + u * (xb - xa), d1, d2;
     if (!invert(mt, w0 + (ta + (tb - ta) * u) * e, xi, d1, d2)) return false;
     // dxi/dtau = (dX/dxi)^-1 e: its second component
-    points.push_back({xi, arc_weights_[g] * (tb - ta) * cross(d1, e) / cross(d1, d2)});
+    points.push_back({xi, weights[g] * (tb - ta) * cross(d1, e) / cross(d1, d2)});
   }
   return true;
 }
@@ -283,8 +385,10 @@ void CurvedMethod::add_moments(const std::vector<BoundaryPoint>& points, Point r
   for (const BoundaryPoint& p : points) {
     const double a = p.xi.x - ref.x, b = p.xi.y - ref.y;
     moments[0] += p.weight * a;
-    moments[1] += p.weight * std::pow(a, degree_ + 1);
-    moments[2] += p.weight * a * std::pow(b, degree_);
+    double an = a, bn = 1;  // a^(degree + 1), b^degree
+    for (int k = 0; k < degree_; ++k) an *= a, bn *= b;
+    moments[1] += p.weight * an;
+    moments[2] += p.weight * a * bn;
   }
 }
 

@@ -2,10 +2,15 @@
 // coordinates xi, with no chords. On a piece P = T ∩ X^-1(K), K a fluid triangle, the integrand
 //   g(xi) = f_ij(s(xi)) |ds/dxi|
 // is a polynomial of degree D = p_multiplier + p_fluid p_map (the fluid's polynomial on K extended beyond K,
-// the multiplier's and the map's on T beyond T). By Green's theorem, with a the smallest xi1 on ∂P,
-//   int_P g dxi = ∮_∂P G dxi2,   G(xi) = int_a^xi1 g(σ, xi2) dσ,
-// G by an m-point Gauss rule on [a, xi1], exact for 2m - 1 >= D. ∂P, counter-clockwise, is made of
-//  - the parts of T's edges whose images lie in K: straight in xi, where G dxi2 is a polynomial of degree
+// the multiplier's and the map's on T beyond T). It is integrated by a rule on the (D + 1)(D + 2)/2 Padua
+// points of degree D in P's box [x0, x1] x [y0, y1] (u, v in [-1, 1] across it; unisolvent for degree D,
+// with a slowly growing Lebesgue constant), with the weights w = V^-1 M that reproduce P's moments
+//   M_ij = int_P L_i(u) L_j(v) dxi,  i + j <= D  (L: Legendre polynomials; V_ij,q = L_i(u_q) L_j(v_q)),
+// exact for degree D on P: g = sum c_ij L_i L_j = sum_q g(q) (V^-1)_q,ij ... so sum_q w_q g(q) = sum c_ij M_ij.
+// The moments come from Green's theorem,
+//   M_ij = ∮_∂P G_ij dxi2,   G_ij = int_x0^xi1 L_i(u(σ)) dσ L_j(v) = hx Λ_i(u) L_j(v)   (Λ_i: L_i's integral),
+// over ∂P, counter-clockwise, which is made of
+//  - the parts of T's edges whose images lie in K: straight in xi, where G_ij dxi2 is a polynomial of degree
 //    D + 1 in the edge's parameter, integrated by a Gauss rule exact for it;
 //  - the preimages of the parts of K's edges inside X(T): xi(τ) = X^-1(y(τ)) along the edge (Newton), an
 //    analytic curve where det dX/dxi > 0 (certified on T by check_fold), integrated by Gauss rules on
@@ -39,12 +44,15 @@ class CurvedMethod : public TriangleIntegrator {
   // Polynomial bases of known degrees and a map of known degree (1 to kMaxPolynomialMapDegree).
   static bool applies(const Integrand& integrand, int map_degree);
 
-  // Gauss points on an arc before its halves are compared (the polynomial part's need and this many more).
-  static constexpr int kArcExtraPoints = 4;
+  // Gauss points on an arc: the polynomial part's need and 1 to kMaxArcExtraPoints more, chosen from the map's
+  // nonlinearity on nearly straight arcs; on others kArcExtraPoints more, the halves compared with the whole.
+  static constexpr int kArcExtraPoints = 2, kMaxArcExtraPoints = 6;
   // The halves' and the whole's shares of an arc agree to this (relative to the arc's size), or to the
   // round-off of reference coordinates: accepted.
   static constexpr double kArcTolerance = 1e-13, kArcRoundOff = 1e-15;
   static constexpr int kMaxArcDepth = 20;
+  // The largest D: a multiplier and a fluid of degree 3 (FreeFEM's P3) under a map of degree 6.
+  static constexpr int kMaxBoxDegree = 3 + 3 * kMaxPolynomialMapDegree;
 
  private:
   struct BoundaryPoint {
@@ -55,13 +63,15 @@ class CurvedMethod : public TriangleIntegrator {
     double tau;  // on K's edge
     Point xi;    // its reference point, on T's edge
   };
+  // The Padua points of degree D and V^-1 (the class comment).
+  void padua_rule(int degree);
   // The share of the piece T ∩ X^-1(K) (fluid triangle kf) added to block; returns its image's area.
   double piece(const MappedTriangle& mt, int kf, LocalBlock& block);
   // Appends the Gauss points of K's edge from w0 (relative to the map's origin) along e, for tau in
   // [ta, tb] whose ends have the reference points xa, xb.
   void arc(const MappedTriangle& mt, Point w0, Point e, double ta, double tb, Point xa, Point xb);
-  // The points of one Gauss rule on [ta, tb] of that edge (false where Newton fails).
-  bool arc_rule(const MappedTriangle& mt, Point w0, Point e, double ta, double tb, Point xa, Point xb,
+  // The points of the Gauss rule with `extra` points on [ta, tb] of that edge (false where Newton fails).
+  bool arc_rule(const MappedTriangle& mt, Point w0, Point e, double ta, double tb, Point xa, Point xb, int extra,
                 std::vector<BoundaryPoint>& points) const;
   // Adds the points' shares of three moments relative to ref, to compare rules by.
   void add_moments(const std::vector<BoundaryPoint>& points, Point ref, double moments[3]) const;
@@ -75,7 +85,12 @@ class CurvedMethod : public TriangleIntegrator {
   std::unique_ptr<TriangleIntegrator> straight_;
   CouplingReport& counts_;
   int degree_ = -1;  // D, of the rules below
-  std::vector<double> edge_nodes_, edge_weights_, arc_nodes_, arc_weights_, inner_nodes_, inner_weights_;
+  std::vector<double> edge_nodes_, edge_weights_;
+  std::vector<double> arc_nodes_[kMaxArcExtraPoints + 1], arc_weights_[kMaxArcExtraPoints + 1];  // by extra
+  std::vector<BoundaryPoint> boundary_points_;
+  std::vector<double> padua_u_, padua_v_;  // the Padua points of degree D in [-1, 1]^2
+  std::vector<double> padua_inverse_;      // V^-1, a row per point
+  std::vector<double> moments_;            // of the piece, (D + 1) per i
   ImageEdges edges_;
   Point sample_xi_[15], sample_x_[15];  // X - origin on the degree-4 lattice of T: Newton's starts
   std::vector<unsigned> stamp_of_;      // the fluid triangles met for this triangle

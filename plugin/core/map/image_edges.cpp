@@ -39,6 +39,13 @@ void ImageEdges::set(const TriangleMap& map) {
           }
       }
   }
+  // On [0, 1]: t^i = sum_{k >= i} C(k, i) / C(d, i) B_k(t), so control point k is sum_{i <= k} C(k, i) / C(d, i) c_i.
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k <= degree; ++k) {
+      Point b{0, 0};
+      for (int l = 0; l <= k; ++l) b = b + (binomial(k, l) / binomial(degree, l)) * coefficient[i][l];
+      control[i][k] = b;
+    }
   // Bernstein coefficients on T (barycentric lambda0 = 1 - xi1 - xi2, lambda1 = xi1, lambda2 = xi2), degree
   // d: beta_JK = sum_{a <= J, b <= K} c_ab C(J, a) C(K, b) / (d! / (a! b! (d - a - b)!)).
   const int d = degree;

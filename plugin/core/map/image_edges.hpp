@@ -10,6 +10,9 @@ struct ImageEdges {
   // Edge i runs from reference corner i to corner i + 1 of (0, 0), (1, 0), (0, 1): xi(t) = start(i) + t
   // direction(i), t in [0, 1], and X(xi(t)) - origin = sum_k coefficient[i][k] t^k (origin: the map's).
   Point coefficient[3][kMaxPolynomialMapDegree + 1];
+  // The same edges' Bernstein control points on [0, 1] (relative to origin): each edge lies in their convex
+  // hull, so a line with all of an edge's control points strictly on one side does not meet it.
+  Point control[3][kMaxPolynomialMapDegree + 1];
   // X(T) - origin lies in [lo, hi]: the box of the map's Bernstein coefficients on T, whose convex hull
   // holds the image.
   Point lo, hi;
