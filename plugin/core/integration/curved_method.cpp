@@ -55,7 +55,9 @@ void legendre(double u, int n, double* l) {
 CurvedMethod::CurvedMethod(const FluidSide& fluid, const Integrand& integrand,
                            std::unique_ptr<TriangleIntegrator> straight, CouplingReport& counts)
     : fluid_(fluid), integrand_(integrand), points_(integrand, counts), straight_(std::move(straight)),
-      counts_(counts), stamp_of_(fluid.mesh().size(), 0u) {}
+      counts_(counts), stamp_of_(fluid.mesh().size(), 0u) {
+  if (integrand.chain || integrand.c1 == 0) batch_ = std::make_unique<BatchIntegrator>(integrand, counts);
+}
 
 bool CurvedMethod::applies(const Integrand& integrand, int map_degree) {
   return integrand.fluid.fitted() && integrand.multiplier.fitted() && integrand.fluid_degree >= 0 &&
@@ -295,6 +297,10 @@ double CurvedMethod::piece(const MappedTriangle& mt, int kf, LocalBlock& block) 
   ++counts_.pieces;
   const double solid_jacobian = area2(mt.solid[0], mt.solid[1], mt.solid[2]);  // ds = this dxi
   double area = 0;
+  rule_y_.resize(count);
+  rule_xi_.resize(count);
+  rule_weight_.resize(count);
+  rule_jacobian_.resize(count);
   for (int point = 0; point < count; ++point) {
     // w = sum_ij (V^-1)_point,ij M_ij
     const double* row = &padua_inverse_[static_cast<size_t>(point) * count];
@@ -306,8 +312,21 @@ double CurvedMethod::piece(const MappedTriangle& mt, int kf, LocalBlock& block) 
     mt.polynomial(xi, x, d1, d2);
     MapValue value;
     mt.set_jacobian(d1, d2, value);
-    points_.add_point(kf, x, mt.k, xi, weight * solid_jacobian, value.jac, block);
     area += weight * cross(d1, d2);
+    rule_y_[point] = x;
+    rule_xi_[point] = xi;
+    rule_weight_[point] = weight * solid_jacobian;
+    rule_jacobian_[point] = {value.jac[0][0], value.jac[0][1], value.jac[1][0], value.jac[1][1]};
+  }
+  if (batch_) {
+    batch_->integrate_points(mt, kf, count, rule_y_.data(), rule_xi_.data(), rule_weight_.data(),
+                             rule_jacobian_.data(), block);
+  } else {
+    for (int point = 0; point < count; ++point) {
+      const std::array<double, 4>& j = rule_jacobian_[point];
+      const double jac[2][2] = {{j[0], j[1]}, {j[2], j[3]}};
+      points_.add_point(kf, rule_y_[point], mt.k, rule_xi_[point], rule_weight_[point], jac, block);
+    }
   }
   return area;
 }

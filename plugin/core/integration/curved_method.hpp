@@ -26,9 +26,11 @@
 // Affine triangles, and maps or bases that are not polynomials of known degree, go to the straight exact
 // method (exact_method.hpp), which also keeps chords on request (subdivide=).
 #pragma once
+#include <array>
 #include <memory>
 #include <vector>
 
+#include "integration/integrate_batch.hpp"
 #include "integration/integrate_points.hpp"
 #include "map/image_edges.hpp"
 
@@ -81,7 +83,8 @@ class CurvedMethod : public TriangleIntegrator {
 
   const FluidSide& fluid_;
   const Integrand& integrand_;
-  PointIntegrator points_;
+  PointIntegrator points_;                  // the integrand at each point, or
+  std::unique_ptr<BatchIntegrator> batch_;  // at all the rule's points at once (the chain rule or c1 = 0)
   std::unique_ptr<TriangleIntegrator> straight_;
   CouplingReport& counts_;
   int degree_ = -1;  // D, of the rules below
@@ -91,6 +94,10 @@ class CurvedMethod : public TriangleIntegrator {
   std::vector<double> padua_u_, padua_v_;  // the Padua points of degree D in [-1, 1]^2
   std::vector<double> padua_inverse_;      // V^-1, a row per point
   std::vector<double> moments_;            // of the piece, (D + 1) per i
+  // the piece's rule: points, reference points, weights (ds), dX/ds
+  std::vector<Point> rule_y_, rule_xi_;
+  std::vector<double> rule_weight_;
+  std::vector<std::array<double, 4>> rule_jacobian_;
   ImageEdges edges_;
   Point sample_xi_[15], sample_x_[15];  // X - origin on the degree-4 lattice of T: Newton's starts
   std::vector<unsigned> stamp_of_;      // the fluid triangles met for this triangle

@@ -88,14 +88,40 @@ BatchIntegrator::BatchIntegrator(const Integrand& integrand, CouplingReport& cou
 }
 
 void BatchIntegrator::integrate(const ClippedImage& image, int kf, const Piece& piece, LocalBlock& block) {
-  const size_t n = gather(image, kf, piece);
+  add_gathered(image.triangle, kf, gather(image, kf, piece), block);
+}
+
+void BatchIntegrator::integrate_points(const MappedTriangle& mt, int kf, size_t n, const Point* y, const Point* xi,
+                                       const double* weight, const std::array<double, 4>* jacobian,
+                                       LocalBlock& block) {
+  reserve(n);
+  for (size_t q = 0; q < n; ++q) {
+    eta_[q] = integrand_.fluid.to_reference(kf, y[q]);
+    xi_[q] = xi[q];
+    weight_[q] = weight[q];
+    jacobian_[q] = jacobian[q];
+  }
+  add_gathered(mt, kf, n, block);
+}
+
+void BatchIntegrator::add_gathered(const MappedTriangle& mt, int kf, size_t n, LocalBlock& block) {
   counts_.points += static_cast<long>(n);
-  const bool twins = integrand_.fluid.shared(kf) && integrand_.multiplier.shared(image.triangle.k);
+  const bool twins = integrand_.fluid.shared(kf) && integrand_.multiplier.shared(mt.k);
   if (by_moments_)
-    moments(image.triangle, kf, n, twins);
+    moments(mt, kf, n, twins);
   else
-    evaluate(image.triangle, kf, n, twins);
+    evaluate(mt, kf, n, twins);
   add_sums(kf, n, twins, block);
+}
+
+void BatchIntegrator::reserve(size_t n) {
+  if (weight_.size() >= n) return;
+  weight_.resize(n);
+  eta_.resize(n);
+  xi_.resize(n);
+  jacobian_.resize(n);
+  if (!by_moments_) fluid_values_.resize(3 * n * fluid_functions_);  // the moments read the fit instead
+  multiplier_values_.resize(3 * n * multiplier_functions_);
 }
 
 size_t BatchIntegrator::gather(const ClippedImage& image, int kf, const Piece& piece) {
@@ -111,14 +137,7 @@ size_t BatchIntegrator::gather(const ClippedImage& image, int kf, const Piece& p
     mt.pull_back_points(piece.n, piece.v, xi_corner, jacobian, pull_back_scratch_);
   }
   const size_t n = static_cast<size_t>(piece.n - 2) * rule.size();
-  if (weight_.size() < n) {
-    weight_.resize(n);
-    eta_.resize(n);
-    xi_.resize(n);
-    jacobian_.resize(n);
-    if (!by_moments_) fluid_values_.resize(3 * n * fluid_functions_);  // the moments read the fit instead
-    multiplier_values_.resize(3 * n * multiplier_functions_);
-  }
+  reserve(n);
   if (!mt.affine && y_.size() < n) y_.resize(n);
   size_t q = 0;
   for (int t = 1; t + 1 < piece.n; ++t) {

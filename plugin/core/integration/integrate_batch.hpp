@@ -26,10 +26,19 @@ class BatchIntegrator : public PieceIntegrator {
  public:
   BatchIntegrator(const Integrand& integrand, CouplingReport& counts);
   void integrate(const ClippedImage& image, int kf, const Piece& piece, LocalBlock& block) override;
+  // The same sums over n given points of the (not affine) solid triangle mt in fluid element kf (entered in
+  // the block): y the points, xi their reference points in mt, weight their weights (ds), jacobian dX/ds
+  // there as (jac[0][0], jac[0][1], jac[1][0], jac[1][1]). The curved method's rules come through this.
+  void integrate_points(const MappedTriangle& mt, int kf, size_t n, const Point* y, const Point* xi,
+                        const double* weight, const std::array<double, 4>* jacobian, LocalBlock& block);
 
  private:
   // The rule's points on the piece's fan: weight_, eta_, xi_, jacobian_; returns their number n.
   size_t gather(const ClippedImage& image, int kf, const Piece& piece);
+  // Room for n points in the per-point arrays.
+  void reserve(size_t n);
+  // The sums over the n gathered points, added to the block.
+  void add_gathered(const MappedTriangle& mt, int kf, size_t n, LocalBlock& block);
   // Not by moments: both bases at the n points, the fluid functions' values and chain-rule gradients
   // weighted (twins: only those of pairs that are not copies).
   void evaluate(const MappedTriangle& mt, int kf, size_t n, bool twins);
