@@ -68,7 +68,7 @@ double CurvedMethod::integrate(const MappedTriangle& mt, LocalBlock& block) {
   if (mt.affine || !mt.fitted()) return straight_->integrate(mt, block);
   const int d = mt.degree();
   const int degree = integrand_.multiplier_degree + integrand_.fluid_degree * d;
-  if (degree > kMaxBoxDegree) return straight_->integrate(mt, block);
+  if (degree > kMaxBoxDegree || (mt.straight && degree > kMaxStraightDegree)) return straight_->integrate(mt, block);
   if (degree != degree_) {
     degree_ = degree;
     gauss_legendre((degree + 3) / 2, edge_nodes_, edge_weights_);                     // degree + 1 along edges
@@ -415,7 +415,9 @@ bool CurvedMethod::inside_image(const MappedTriangle& mt, Point w, Point guess, 
   Point d1, d2;
   if (least_barycentric(guess) >= -0.25) {
     xi = guess;
-    if (invert(mt, w, xi, d1, d2)) return least_barycentric(xi) >= margin;
+    // inside when found inside; found outside (or not found), the nearest sample decides: beyond T the
+    // polynomial map may take w again
+    if (invert(mt, w, xi, d1, d2) && least_barycentric(xi) >= margin) return true;
   }
   int nearest = 0;
   double best = HUGE_VAL;

@@ -23,8 +23,9 @@
 // opposite sides. The image's area outside the fluid mesh is its area (int_T det dX/dxi, exact) less the
 // pieces'.
 //
-// Affine triangles, and maps or bases that are not polynomials of known degree, go to the straight exact
-// method (exact_method.hpp), which also keeps chords on request (subdivide=).
+// Affine triangles, straight images (P1b maps) whose D is above kMaxStraightDegree, and maps or bases that are
+// not polynomials of known degree go to the straight exact method (exact_method.hpp), which also keeps chords
+// on request (subdivide=).
 #pragma once
 #include <array>
 #include <memory>
@@ -53,6 +54,10 @@ class CurvedMethod : public TriangleIntegrator {
   // round-off of reference coordinates: accepted.
   static constexpr double kArcTolerance = 1e-13, kArcRoundOff = 1e-15;
   static constexpr int kMaxArcDepth = 20;
+  // Straight images (P1b maps) with D above this go to the straight method, whose pull-back rule is within
+  // about 1e-13 there and cheaper when D is high (the Padua points grow as D^2 / 2: 28 at D = 6, 91 at
+  // D = 12 for listing 5.1's P1b spaces under a P1b map).
+  static constexpr int kMaxStraightDegree = 6;
   // The largest D: a multiplier and a fluid of degree 3 (FreeFEM's P3) under a map of degree 6.
   static constexpr int kMaxBoxDegree = 3 + 3 * kMaxPolynomialMapDegree;
 
