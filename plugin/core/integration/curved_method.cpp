@@ -159,63 +159,72 @@ void CurvedMethod::padua_rule(int degree) {
 
 double CurvedMethod::piece(const MappedTriangle& mt, int kf, LocalBlock& block) {
   const Mesh& mesh = fluid_.mesh();
-  const Point origin = mt.origin();
-  Point w[3], e[3];
-  for (int j = 0; j < 3; ++j) w[j] = mesh.vertex(kf, j) - origin;
-  for (int j = 0; j < 3; ++j) e[j] = w[(j + 1) % 3] - w[j];
+  FluidTriangle& f = fluid_triangle_;
+  for (int j = 0; j < 3; ++j) f.w[j] = mesh.vertex(kf, j) - mt.origin();
+  for (int j = 0; j < 3; ++j) f.e[j] = f.w[(j + 1) % 3] - f.w[j];
   const Point lo = edges_.lo, hi = edges_.hi;
+  const Point* w = f.w;
   if (std::max({w[0].x, w[1].x, w[2].x}) < lo.x || std::min({w[0].x, w[1].x, w[2].x}) > hi.x ||
       std::max({w[0].y, w[1].y, w[2].y}) < lo.y || std::min({w[0].y, w[1].y, w[2].y}) > hi.y)
     return 0;
+  find_crossings();
+  boundary_.clear();
+  add_solid_edges();
+  add_fluid_edges(mt);
+  if (boundary_.empty()) return 0;
+  return integrate_piece(mt, kf, block);
+}
+
+void CurvedMethod::find_crossings() {
+  FluidTriangle& f = fluid_triangle_;
   const int d = edges_.degree;
-  const double extent = std::max(hi.x - lo.x, hi.y - lo.y);
-  // Line j of K (inside on the left): h_j(y) = e_j x (y - w_j). Along image edge i, q[i][j](t) = h_j(X(xi(t))).
-  double q[3][3][kMaxPolynomialMapDegree + 1];
-  bool coincident[3][3];
-  double at_corner[3][3];  // h_j at the image of T's corner c, [j][c]: the same number for both its edges
+  const double extent = std::max(edges_.hi.x - edges_.lo.x, edges_.hi.y - edges_.lo.y);
   for (int j = 0; j < 3; ++j) {
-    const double scale = 1e-13 * (std::fabs(e[j].x) + std::fabs(e[j].y)) * extent;
+    const double scale = 1e-13 * (std::fabs(f.e[j].x) + std::fabs(f.e[j].y)) * extent;
     for (int i = 0; i < 3; ++i) {
       double sum = 0;
       for (int k = 0; k <= d; ++k) {
-        q[i][j][k] = cross(e[j], k == 0 ? edges_.coefficient[i][0] - w[j] : edges_.coefficient[i][k]);
-        sum += std::fabs(q[i][j][k]);
+        f.q[i][j][k] = cross(f.e[j], k == 0 ? edges_.coefficient[i][0] - f.w[j] : edges_.coefficient[i][k]);
+        sum += std::fabs(f.q[i][j][k]);
       }
-      coincident[i][j] = sum <= scale;
-      at_corner[j][i] = q[i][j][0];
+      f.coincident[i][j] = sum <= scale;
+      f.at_corner[j][i] = f.q[i][j][0];
     }
   }
-  // The crossings: breakpoints on T's edges, and on K's edges with their reference points.
-  double breaks[3][3 * kMaxRootsDegree + 2];
-  int nbreaks[3] = {0, 0, 0};
+  for (int i = 0; i < 3; ++i) f.breaks[i] = 0;
   for (int j = 0; j < 3; ++j) crossings_[j].clear();
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
-      if (coincident[i][j]) continue;
+      if (f.coincident[i][j]) continue;
       // all control points strictly on one side: no crossing
       int above = 0, below = 0;
       for (int k = 0; k <= d; ++k) {
-        const double h = cross(e[j], edges_.control[i][k] - w[j]);
+        const double h = cross(f.e[j], edges_.control[i][k] - f.w[j]);
         above += h > 0;
         below += h < 0;
       }
       if (above == d + 1 || below == d + 1) continue;
       double roots[kMaxRootsDegree];
-      const int n = roots_in(q[i][j], d, 0, 1, at_corner[j][i], at_corner[j][(i + 1) % 3], roots);
+      const int n = roots_in(f.q[i][j], d, 0, 1, f.at_corner[j][i], f.at_corner[j][(i + 1) % 3], roots);
       for (int r = 0; r < n; ++r) {
-        breaks[i][nbreaks[i]++] = roots[r];
-        const Point x = edges_.at(i, roots[r]) - w[j];
-        const double tau = (x.x * e[j].x + x.y * e[j].y) / (e[j].x * e[j].x + e[j].y * e[j].y);
+        f.t[i][f.breaks[i]++] = roots[r];
+        const Point x = edges_.at(i, roots[r]) - f.w[j];
+        const Point e = f.e[j];
+        const double tau = (x.x * e.x + x.y * e.y) / (e.x * e.x + e.y * e.y);
         if (tau >= -1e-13 && tau <= 1 + 1e-13)
           crossings_[j].push_back({std::min(1.0, std::max(0.0, tau)),
                                    ImageEdges::start(i) + roots[r] * ImageEdges::direction(i)});
       }
     }
-  boundary_.clear();
+}
+
+void CurvedMethod::add_solid_edges() {
+  FluidTriangle& f = fluid_triangle_;
+  const int d = edges_.degree;
   // T's edges 1 and 2 (edge 0, xi2 = 0, has no share of ∮ G dxi2).
   for (int i = 1; i < 3; ++i) {
-    double* b = breaks[i];
-    int n = nbreaks[i];
+    double* b = f.t[i];
+    int n = f.breaks[i];
     b[n++] = 0;
     b[n++] = 1;
     std::sort(b, b + n);
@@ -226,11 +235,11 @@ double CurvedMethod::piece(const MappedTriangle& mt, int kf, LocalBlock& block) 
       const double tm = 0.5 * (ta + tb);
       bool in = true;
       for (int j = 0; j < 3 && in; ++j) {
-        if (coincident[i][j]) {  // along K's edge j: counted where T and K lie on the same side
+        if (f.coincident[i][j]) {  // along K's edge j: counted where T and K lie on the same side
           const Point tangent = edges_.tangent(i, tm);
-          in = tangent.x * e[j].x + tangent.y * e[j].y > 0;
+          in = tangent.x * f.e[j].x + tangent.y * f.e[j].y > 0;
         } else {
-          in = polynomial_value(q[i][j], d, tm) >= 0;
+          in = polynomial_value(f.q[i][j], d, tm) >= 0;
         }
       }
       if (!in) continue;
@@ -239,10 +248,14 @@ double CurvedMethod::piece(const MappedTriangle& mt, int kf, LocalBlock& block) 
                              edge_weights_[g] * (tb - ta) * direction.y});
     }
   }
-  // K's edges, where inside X(T).
+}
+
+void CurvedMethod::add_fluid_edges(const MappedTriangle& mt) {
+  const FluidTriangle& f = fluid_triangle_;
+  const Point lo = edges_.lo, hi = edges_.hi;
   for (int j = 0; j < 3; ++j) {
     bool along_image = false;
-    for (int i = 0; i < 3; ++i) along_image = along_image || coincident[i][j];
+    for (int i = 0; i < 3; ++i) along_image = along_image || f.coincident[i][j];
     // on an image edge (coincident boundaries) a point is not inside: T's edge carries that part
     const double margin = along_image ? 1e-9 : 0;
     std::vector<Crossing>& c = crossings_[j];
@@ -253,7 +266,7 @@ double CurvedMethod::piece(const MappedTriangle& mt, int kf, LocalBlock& block) 
     for (size_t s = 0; s + 1 < c.size(); ++s) {
       const Crossing a = c[s], b = c[s + 1];
       if (!(b.tau > a.tau)) continue;
-      const Point wm = w[j] + 0.5 * (a.tau + b.tau) * e[j];
+      const Point wm = f.w[j] + 0.5 * (a.tau + b.tau) * f.e[j];
       if (wm.x < lo.x || wm.x > hi.x || wm.y < lo.y || wm.y > hi.y) continue;
       const bool known_a = !std::isnan(a.xi.x), known_b = !std::isnan(b.xi.x);
       Point guess = known_a && known_b ? 0.5 * (a.xi + b.xi) : known_a ? a.xi : known_b ? b.xi : Point{-1, -1};
@@ -262,14 +275,16 @@ double CurvedMethod::piece(const MappedTriangle& mt, int kf, LocalBlock& block) 
       auto end = [&](const Crossing& cr) {
         if (!std::isnan(cr.xi.x)) return cr.xi;
         Point xi = xm, d1, d2;
-        if (!invert(mt, w[j] + cr.tau * e[j], xi, d1, d2))
+        if (!invert(mt, f.w[j] + cr.tau * f.e[j], xi, d1, d2))
           throw Error("could not pull a fluid vertex back into " + mt.name() + " (Newton's method)");
         return xi;
       };
-      arc(mt, w[j], e[j], a.tau, b.tau, end(a), end(b));
+      arc(mt, f.w[j], f.e[j], a.tau, b.tau, end(a), end(b));
     }
   }
-  if (boundary_.empty()) return 0;
+}
+
+double CurvedMethod::integrate_piece(const MappedTriangle& mt, int kf, LocalBlock& block) {
   // The piece lies in the box of its boundary, [x0, x1] x [y0, y1]; u, v in [-1, 1] across it.
   Point low{HUGE_VAL, HUGE_VAL}, high{-HUGE_VAL, -HUGE_VAL};
   for (const BoundaryPoint& p : boundary_) {

@@ -33,6 +33,7 @@
 
 #include "integration/integrate_batch.hpp"
 #include "integration/integrate_points.hpp"
+#include "geometry/polynomial_roots.hpp"
 #include "map/image_edges.hpp"
 
 namespace dlmfsi {
@@ -66,6 +67,16 @@ class CurvedMethod : public TriangleIntegrator {
     Point xi;
     double weight;  // its share of ∮ G dxi2: w dxi2/dparameter
   };
+  // The fluid triangle K of the piece, relative to the map's origin: corners w, edges e (inside on the left).
+  struct FluidTriangle {
+    Point w[3], e[3];
+    // Line j along image edge i: q[i][j](t) = e_j x (X(xi(t)) - w_j), coefficients of t^k
+    double q[3][3][kMaxPolynomialMapDegree + 1];
+    bool coincident[3][3];  // image edge i along line j (q[i][j] below round-off)
+    double at_corner[3][3];  // line j at the image of T's corner c, [j][c]: one number for both its edges
+    double t[3][3 * kMaxRootsDegree + 2];  // breakpoints on T's edge i, breaks[i] of them
+    int breaks[3];
+  };
   struct Crossing {
     double tau;  // on K's edge
     Point xi;    // its reference point, on T's edge
@@ -74,6 +85,16 @@ class CurvedMethod : public TriangleIntegrator {
   void padua_rule(int degree);
   // The share of the piece T ∩ X^-1(K) (fluid triangle kf) added to block; returns its image's area.
   double piece(const MappedTriangle& mt, int kf, LocalBlock& block);
+  // K's lines along T's image edges (fluid_triangle_: q, coincident, at_corner) and their crossings
+  // (breakpoints on T's edges, crossings_ on K's).
+  void find_crossings();
+  // The parts of T's edges whose images lie in K, and the preimages of the parts of K's edges inside X(T): their
+  // points into boundary_.
+  void add_solid_edges();
+  void add_fluid_edges(const MappedTriangle& mt);
+  // The piece's moments from boundary_, its Padua rule, the rule's points added to block; returns the image's
+  // area.
+  double integrate_piece(const MappedTriangle& mt, int kf, LocalBlock& block);
   // Appends the Gauss points of K's edge from w0 (relative to the map's origin) along e, for tau in
   // [ta, tb] whose ends have the reference points xa, xb.
   void arc(const MappedTriangle& mt, Point w0, Point e, double ta, double tb, Point xa, Point xb);
@@ -110,6 +131,7 @@ class CurvedMethod : public TriangleIntegrator {
   unsigned stamp_ = 0;
   std::vector<BoundaryPoint> boundary_;
   std::vector<Crossing> crossings_[3];
+  FluidTriangle fluid_triangle_;
 };
 
 }  // namespace dlmfsi
