@@ -162,7 +162,9 @@ double CurvedMethod::piece(const MappedTriangle& mt, int kf, LocalBlock& block) 
   FluidTriangle& f = fluid_triangle_;
   for (int j = 0; j < 3; ++j) f.w[j] = mesh.vertex(kf, j) - mt.origin();
   for (int j = 0; j < 3; ++j) f.e[j] = f.w[(j + 1) % 3] - f.w[j];
-  const Point lo = edges_.lo, hi = edges_.hi;
+  // K's box against the image's (widened by far more than its round-off: K along an image edge is kept)
+  const double margin = 1e-10 * std::max(edges_.hi.x - edges_.lo.x, edges_.hi.y - edges_.lo.y);
+  const Point lo{edges_.lo.x - margin, edges_.lo.y - margin}, hi{edges_.hi.x + margin, edges_.hi.y + margin};
   const Point* w = f.w;
   if (std::max({w[0].x, w[1].x, w[2].x}) < lo.x || std::min({w[0].x, w[1].x, w[2].x}) > hi.x ||
       std::max({w[0].y, w[1].y, w[2].y}) < lo.y || std::min({w[0].y, w[1].y, w[2].y}) > hi.y)
@@ -193,8 +195,16 @@ void CurvedMethod::find_crossings() {
   }
   for (int i = 0; i < 3; ++i) f.breaks[i] = 0;
   for (int j = 0; j < 3; ++j) crossings_[j].clear();
+  // K's box: an image edge whose control points' box misses it has no part in K and no crossing with K's edges
+  // (the boxes widened by far more than their round-off, so that an image edge along a fluid edge is kept)
+  const double margin = 1e-10 * extent;
+  const Point klo{std::min({f.w[0].x, f.w[1].x, f.w[2].x}) - margin, std::min({f.w[0].y, f.w[1].y, f.w[2].y}) - margin};
+  const Point khi{std::max({f.w[0].x, f.w[1].x, f.w[2].x}) + margin, std::max({f.w[0].y, f.w[1].y, f.w[2].y}) + margin};
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
+    f.edge_meets[i] = !(edges_.edge_hi[i].x < klo.x || edges_.edge_lo[i].x > khi.x || edges_.edge_hi[i].y < klo.y ||
+                        edges_.edge_lo[i].y > khi.y);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3 && f.edge_meets[i]; ++j) {
       if (f.coincident[i][j]) continue;
       // all control points strictly on one side: no crossing
       int above = 0, below = 0;
@@ -223,6 +233,7 @@ void CurvedMethod::add_solid_edges() {
   const int d = edges_.degree;
   // T's edges 1 and 2 (edge 0, xi2 = 0, has no share of ∮ G dxi2).
   for (int i = 1; i < 3; ++i) {
+    if (!f.edge_meets[i]) continue;
     double* b = f.t[i];
     int n = f.breaks[i];
     b[n++] = 0;
@@ -252,7 +263,9 @@ void CurvedMethod::add_solid_edges() {
 
 void CurvedMethod::add_fluid_edges(const MappedTriangle& mt) {
   const FluidTriangle& f = fluid_triangle_;
-  const Point lo = edges_.lo, hi = edges_.hi;
+  const double box_margin = 1e-10 * std::max(edges_.hi.x - edges_.lo.x, edges_.hi.y - edges_.lo.y);
+  const Point lo{edges_.lo.x - box_margin, edges_.lo.y - box_margin};
+  const Point hi{edges_.hi.x + box_margin, edges_.hi.y + box_margin};
   for (int j = 0; j < 3; ++j) {
     bool along_image = false;
     for (int i = 0; i < 3; ++i) along_image = along_image || f.coincident[i][j];

@@ -76,6 +76,7 @@ class CurvedMethod : public TriangleIntegrator {
     double at_corner[3][3];  // line j at the image of T's corner c, [j][c]: one number for both its edges
     double t[3][3 * kMaxRootsDegree + 2];  // breakpoints on T's edge i, breaks[i] of them
     int breaks[3];
+    bool edge_meets[3];  // image edge i's control box meets K's box
   };
   struct Crossing {
     double tau;  // on K's edge

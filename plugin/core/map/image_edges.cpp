@@ -45,6 +45,8 @@ void ImageEdges::set(const TriangleMap& map) {
       Point b{0, 0};
       for (int l = 0; l <= k; ++l) b = b + (binomial(k, l) / binomial(degree, l)) * coefficient[i][l];
       control[i][k] = b;
+      edge_lo[i] = k == 0 ? b : Point{std::min(edge_lo[i].x, b.x), std::min(edge_lo[i].y, b.y)};
+      edge_hi[i] = k == 0 ? b : Point{std::max(edge_hi[i].x, b.x), std::max(edge_hi[i].y, b.y)};
     }
   // Bernstein coefficients on T (barycentric lambda0 = 1 - xi1 - xi2, lambda1 = xi1, lambda2 = xi2), degree
   // d: beta_JK = sum_{a <= J, b <= K} c_ab C(J, a) C(K, b) / (d! / (a! b! (d - a - b)!)).

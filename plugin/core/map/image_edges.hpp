@@ -13,6 +13,8 @@ struct ImageEdges {
   // The same edges' Bernstein control points on [0, 1] (relative to origin): each edge lies in their convex
   // hull, so a line with all of an edge's control points strictly on one side does not meet it.
   Point control[3][kMaxPolynomialMapDegree + 1];
+  // The box of each edge's control points, which holds the edge's image.
+  Point edge_lo[3], edge_hi[3];
   // X(T) - origin lies in [lo, hi]: the box of the map's Bernstein coefficients on T, whose convex hull
   // holds the image.
   Point lo, hi;
