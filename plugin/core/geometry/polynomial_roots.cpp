@@ -1,5 +1,7 @@
 #include "geometry/polynomial_roots.hpp"
 
+#include <cmath>
+
 namespace dlmfsi {
 
 double polynomial_value(const double* c, int degree, double t) {
@@ -10,22 +12,31 @@ double polynomial_value(const double* c, int degree, double t) {
 
 namespace {
 
-// The root of p in [a, b] where p(a) and p(b) have opposite signs (neither 0): bisection until the interval
-// has no double between its ends.
+// The root of p in [a, b] where p(a) and p(b) have opposite signs (neither 0) and p is monotone: Newton's
+// steps kept inside the bracket (a bisection where a step would leave it), the bracket shrunk at every
+// evaluation, until a step is below the last bits of t or the bracket has no double between its ends.
 double bisect(const double* c, int degree, double a, double b, double pa) {
-  for (int it = 0; it < 2000; ++it) {
-    const double m = 0.5 * (a + b);
-    if (!(m > a && m < b)) break;
-    const double pm = polynomial_value(c, degree, m);
-    if (pm == 0) return m;
-    if ((pm < 0) == (pa < 0)) {
-      a = m;
-      pa = pm;
-    } else {
-      b = m;
+  double t = 0.5 * (a + b);
+  for (int it = 0; it < 200; ++it) {
+    double p = c[degree], dp = 0;
+    for (int k = degree - 1; k >= 0; --k) {
+      dp = dp * t + p;
+      p = p * t + c[k];
     }
+    if (p == 0) return t;
+    if ((p < 0) == (pa < 0)) {
+      a = t;
+      pa = p;
+    } else {
+      b = t;
+    }
+    double next = dp != 0 ? t - p / dp : 0.5 * (a + b);
+    if (!(next > a && next < b)) next = 0.5 * (a + b);
+    if (!(next > a && next < b)) return next;  // no double left between the bracket's ends
+    if (std::fabs(next - t) <= 2e-16 * std::fabs(t)) return next;
+    t = next;
   }
-  return 0.5 * (a + b);
+  return t;
 }
 
 }  // namespace
