@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <string>
 #include <utility>
 
@@ -55,7 +56,8 @@ void legendre(double u, int n, double* l) {
 CurvedMethod::CurvedMethod(const FluidSide& fluid, const Integrand& integrand,
                            std::unique_ptr<TriangleIntegrator> straight, CouplingReport& counts)
     : fluid_(fluid), integrand_(integrand), points_(integrand, counts), straight_(std::move(straight)),
-      counts_(counts), stamp_of_(fluid.mesh().size(), 0u) {
+      counts_(counts), stamp_of_(fluid.mesh().size(), 0u), done_of_(fluid.mesh().size(), 0u),
+      slot_of_(fluid.mesh().size(), 0) {
   if (integrand.chain || integrand.c1 == 0) batch_ = std::make_unique<BatchIntegrator>(integrand, counts);
 }
 
@@ -85,8 +87,11 @@ double CurvedMethod::integrate(const MappedTriangle& mt, LocalBlock& block) {
     }
   if (++stamp_ == 0) {
     std::fill(stamp_of_.begin(), stamp_of_.end(), 0u);
+    std::fill(done_of_.begin(), done_of_.end(), 0u);
     stamp_ = 1;
   }
+  done_.clear();
+  edge_store_.clear();
   candidates_.clear();
   fluid_.grid().for_each_in_box(mt.origin() + edges_.lo, mt.origin() + edges_.hi, [&](int k) {
     if (stamp_of_[k] == stamp_) return;
@@ -172,7 +177,7 @@ double CurvedMethod::piece(const MappedTriangle& mt, int kf, LocalBlock& block) 
   find_crossings();
   boundary_.clear();
   add_solid_edges();
-  add_fluid_edges(mt);
+  add_fluid_edges(mt, kf);
   if (boundary_.empty()) return 0;
   return integrate_piece(mt, kf, block);
 }
@@ -261,39 +266,65 @@ void CurvedMethod::add_solid_edges() {
   }
 }
 
-void CurvedMethod::add_fluid_edges(const MappedTriangle& mt) {
+void CurvedMethod::add_fluid_edges(const MappedTriangle& mt, int kf) {
+  const Mesh& mesh = fluid_.mesh();
+  StoredEdges mine;
+  for (int j = 0; j < 3; ++j) {
+    mine.begin[j] = mine.end[j] = 0;
+    // K's edge j is edge jn of its neighbour kn: when kn's piece has been done, the same points, reversed
+    const int kn = mesh.neighbours[kf][(j + 2) % 3];
+    int jn = -1;
+    if (kn >= 0 && done_of_[kn] == stamp_)
+      for (int i = 0; i < 3; ++i)
+        if (mesh.neighbours[kn][(i + 2) % 3] == kf) jn = i;
+    if (jn >= 0) {
+      const StoredEdges& theirs = done_[static_cast<size_t>(slot_of_[kn])];
+      for (int p = theirs.begin[jn]; p < theirs.end[jn]; ++p)
+        boundary_.push_back({edge_store_[static_cast<size_t>(p)].xi, -edge_store_[static_cast<size_t>(p)].weight});
+      continue;
+    }
+    const size_t from = boundary_.size();
+    add_fluid_edge(mt, j);
+    mine.begin[j] = static_cast<int>(edge_store_.size());
+    edge_store_.insert(edge_store_.end(), boundary_.begin() + static_cast<std::ptrdiff_t>(from), boundary_.end());
+    mine.end[j] = static_cast<int>(edge_store_.size());
+  }
+  done_of_[kf] = stamp_;
+  slot_of_[kf] = static_cast<int>(done_.size());
+  done_.push_back(mine);
+}
+
+void CurvedMethod::add_fluid_edge(const MappedTriangle& mt, int j) {
   const FluidTriangle& f = fluid_triangle_;
   const double box_margin = 1e-10 * std::max(edges_.hi.x - edges_.lo.x, edges_.hi.y - edges_.lo.y);
   const Point lo{edges_.lo.x - box_margin, edges_.lo.y - box_margin};
   const Point hi{edges_.hi.x + box_margin, edges_.hi.y + box_margin};
-  for (int j = 0; j < 3; ++j) {
-    bool along_image = false;
-    for (int i = 0; i < 3; ++i) along_image = along_image || f.coincident[i][j];
-    // on an image edge (coincident boundaries) a point is not inside: T's edge carries that part
-    const double margin = along_image ? 1e-9 : 0;
-    std::vector<Crossing>& c = crossings_[j];
-    const Point unknown{NAN, NAN};
-    c.push_back({0, unknown});
-    c.push_back({1, unknown});
-    std::sort(c.begin(), c.end(), [](const Crossing& a, const Crossing& b) { return a.tau < b.tau; });
-    for (size_t s = 0; s + 1 < c.size(); ++s) {
-      const Crossing a = c[s], b = c[s + 1];
-      if (!(b.tau > a.tau)) continue;
-      const Point wm = f.w[j] + 0.5 * (a.tau + b.tau) * f.e[j];
-      if (wm.x < lo.x || wm.x > hi.x || wm.y < lo.y || wm.y > hi.y) continue;
-      const bool known_a = !std::isnan(a.xi.x), known_b = !std::isnan(b.xi.x);
-      Point guess = known_a && known_b ? 0.5 * (a.xi + b.xi) : known_a ? a.xi : known_b ? b.xi : Point{-1, -1};
-      Point xm;
-      if (!inside_image(mt, wm, guess, margin, xm)) continue;
-      auto end = [&](const Crossing& cr) {
-        if (!std::isnan(cr.xi.x)) return cr.xi;
-        Point xi = xm, d1, d2;
-        if (!invert(mt, f.w[j] + cr.tau * f.e[j], xi, d1, d2))
-          throw Error("could not pull a fluid vertex back into " + mt.name() + " (Newton's method)");
-        return xi;
-      };
-      arc(mt, f.w[j], f.e[j], a.tau, b.tau, end(a), end(b));
-    }
+  bool along_image = false;
+  for (int i = 0; i < 3; ++i) along_image = along_image || f.coincident[i][j];
+  // on an image edge (coincident boundaries) a point is not inside: T's edge carries that part
+  const double margin = along_image ? 1e-9 : 0;
+  std::vector<Crossing>& c = crossings_[j];
+  const Point unknown{NAN, NAN};
+  c.push_back({0, unknown});
+  c.push_back({1, unknown});
+  std::sort(c.begin(), c.end(), [](const Crossing& a, const Crossing& b) { return a.tau < b.tau; });
+  for (size_t s = 0; s + 1 < c.size(); ++s) {
+    const Crossing a = c[s], b = c[s + 1];
+    if (!(b.tau > a.tau)) continue;
+    const Point wm = f.w[j] + 0.5 * (a.tau + b.tau) * f.e[j];
+    if (wm.x < lo.x || wm.x > hi.x || wm.y < lo.y || wm.y > hi.y) continue;
+    const bool known_a = !std::isnan(a.xi.x), known_b = !std::isnan(b.xi.x);
+    Point guess = known_a && known_b ? 0.5 * (a.xi + b.xi) : known_a ? a.xi : known_b ? b.xi : Point{-1, -1};
+    Point xm;
+    if (!inside_image(mt, wm, guess, margin, xm)) continue;
+    auto end = [&](const Crossing& cr) {
+      if (!std::isnan(cr.xi.x)) return cr.xi;
+      Point xi = xm, d1, d2;
+      if (!invert(mt, f.w[j] + cr.tau * f.e[j], xi, d1, d2))
+        throw Error("could not pull a fluid vertex back into " + mt.name() + " (Newton's method)");
+      return xi;
+    };
+    arc(mt, f.w[j], f.e[j], a.tau, b.tau, end(a), end(b));
   }
 }
 

@@ -92,7 +92,10 @@ class CurvedMethod : public TriangleIntegrator {
   // The parts of T's edges whose images lie in K, and the preimages of the parts of K's edges inside X(T): their
   // points into boundary_.
   void add_solid_edges();
-  void add_fluid_edges(const MappedTriangle& mt);
+  // K's edges (fluid triangle kf): an edge shared with a fluid triangle done before for this T takes its points,
+  // reversed (one arc, not two); the others are computed by add_fluid_edge and kept for the neighbour.
+  void add_fluid_edges(const MappedTriangle& mt, int kf);
+  void add_fluid_edge(const MappedTriangle& mt, int j);
   // The piece's moments from boundary_, its Padua rule, the rule's points added to block; returns the image's
   // area.
   double integrate_piece(const MappedTriangle& mt, int kf, LocalBlock& block);
@@ -131,6 +134,14 @@ class CurvedMethod : public TriangleIntegrator {
   std::vector<int> candidates_;
   unsigned stamp_ = 0;
   std::vector<BoundaryPoint> boundary_;
+  // The fluid triangles done for this T: their edges' points in edge_store_, [begin, end) per edge.
+  struct StoredEdges {
+    int begin[3], end[3];
+  };
+  std::vector<unsigned> done_of_;  // stamp_ when done
+  std::vector<int> slot_of_;       // its StoredEdges in done_
+  std::vector<StoredEdges> done_;
+  std::vector<BoundaryPoint> edge_store_;
   std::vector<Crossing> crossings_[3];
   FluidTriangle fluid_triangle_;
 };
