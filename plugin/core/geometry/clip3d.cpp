@@ -52,12 +52,6 @@ inline unsigned crossing_pairs(const unsigned pos[4], const unsigned neg[4]) {
   return pairs;
 }
 
-// The side (+1, 0, -1) of vertex v of a plane, from the masks of the vertices strictly on its positive and
-// negative side.
-inline int side_in(unsigned pos, unsigned neg, int v) {
-  return static_cast<int>(pos >> v & 1u) - static_cast<int>(neg >> v & 1u);
-}
-
 // kPermutationSign[c][o]: the sign of the permutation (c, o, u, v) of (0, 1, 2, 3), u < v the other two.
 constexpr int kPermutationSign[4][4] = {{0, 1, -1, 1}, {-1, 0, 1, -1}, {1, -1, 0, 1}, {-1, 1, -1, 0}};
 
@@ -313,12 +307,13 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
     return out;
   };
   // pos_b[j], neg_b[j]: the vertices of a strictly on the inner, outer side of b's face j (bit i); pos_a,
-  // neg_a the same for b's vertices and a's faces (side_in reads a vertex's side from them).
+  // neg_a the same for b's vertices and a's faces; side_b[j][i], side_a[i][j] the same signs (+1, 0, -1) as a table.
   unsigned pos_b[4], neg_b[4], pos_a[4], neg_a[4];
+  int side_b[4][4], side_a[4][4];
   for (int j = 0; j < 4; ++j) {
     pos_b[j] = neg_b[j] = 0;
     for (int i = 0; i < 4; ++i) {
-      const int side = b_faces.side(j, a[i]);
+      const int side = side_b[j][i] = b_faces.side(j, a[i]);
       if (side > 0) pos_b[j] |= 1u << i;
       if (side < 0) neg_b[j] |= 1u << i;
     }
@@ -330,7 +325,7 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
   for (int i = 0; i < 4; ++i) {
     pos_a[i] = neg_a[i] = 0;
     for (int j = 0; j < 4; ++j) {
-      const int side = a_faces.side(i, b[j]);
+      const int side = side_a[i][j] = a_faces.side(i, b[j]);
       if (side > 0) pos_a[i] |= 1u << j;
       if (side < 0) neg_a[i] |= 1u << j;
     }
@@ -348,7 +343,7 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
     if (a_outside >> i & 1u) continue;
     unsigned planes = faces_at_vertex(i);
     for (int j = 0; j < 4; ++j)
-      if (side_in(pos_b[j], neg_b[j], i) == 0) planes |= 1u << (4 + j);
+      if (side_b[j][i] == 0) planes |= 1u << (4 + j);
     add(a[i], planes);
   }
   // Vertices of b in closed a that are not vertices of a.
@@ -358,7 +353,7 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
     if (b[j] == a[0] || b[j] == a[1] || b[j] == a[2] || b[j] == a[3]) continue;
     unsigned planes = faces_at_vertex(j) << 4;
     for (int i = 0; i < 4; ++i)
-      if (side_in(pos_a[i], neg_a[i], j) == 0) planes |= 1u << i;
+      if (side_a[i][j] == 0) planes |= 1u << i;
     add(b[j], planes);
   }
   // The orientations of a's edge lines against b's: edge(ea) of a, edge(eb) of b,
@@ -386,8 +381,7 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
     bool inside = true;
     for (int z = 0; z < 3 && inside; ++z) {
       const int o = opposite[z];
-      const int side = crossing_side(side_in(pos_b[o], neg_b[o], p), side_in(pos_b[o], neg_b[o], q),
-                                     side_in(pos_b[j], neg_b[j], p), kPermutationSign[j][o],
+      const int side = crossing_side(side_b[o][p], side_b[o][q], side_b[j][p], kPermutationSign[j][o],
                                      [&] { return orientation(ea, eb[z]); });
       if (side < 0) inside = false;
       if (side == 0) ++zeros, zero = z;
@@ -413,8 +407,7 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
     bool inside = true;
     for (int z = 0; z < 3 && inside; ++z) {
       const int o = opposite[z];
-      inside = crossing_side(side_in(pos_a[o], neg_a[o], x), side_in(pos_a[o], neg_a[o], y),
-                             side_in(pos_a[i], neg_a[i], x), kPermutationSign[i][o],
+      inside = crossing_side(side_a[o][x], side_a[o][y], side_a[i][x], kPermutationSign[i][o],
                              [&] { return orientation(ea[z], eb); }) > 0;
     }
     if (inside) add(crossing(b[x], b[y], a[k], a[l], a[m]), faces_at_edge(x, y) << 4 | 1u << i);
