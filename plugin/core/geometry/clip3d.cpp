@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <initializer_list>
 #include <utility>
 
 #include "geometry/predicates3d.hpp"
@@ -87,17 +86,25 @@ inline Point3 clamp_to(Point3 p, Point3 lo, Point3 hi) {
   return {std::min(hi.x, std::max(lo.x, p.x)), std::min(hi.y, std::max(lo.y, p.y)), std::min(hi.z, std::max(lo.z, p.z))};
 }
 
+// The intersection of the boxes of two point sets, [lo, hi]: each set's box from its points in order.
 struct Box {
-  Point3 lo{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, hi{HUGE_VAL, HUGE_VAL, HUGE_VAL};
-  // intersect with the box of the points
-  void meet(std::initializer_list<Point3> points) {
-    Point3 l = *points.begin(), h = l;
-    for (Point3 p : points) {
+  Point3 lo, hi;
+  template <int N, int M>
+  Box(const Point3 (&first)[N], const Point3 (&second)[M]) {
+    Point3 l1, h1, l2, h2;
+    bounds(first, l1, h1);
+    bounds(second, l2, h2);
+    lo = {std::max(l1.x, l2.x), std::max(l1.y, l2.y), std::max(l1.z, l2.z)};
+    hi = {std::min(h1.x, h2.x), std::min(h1.y, h2.y), std::min(h1.z, h2.z)};
+  }
+  template <int N>
+  static void bounds(const Point3 (&points)[N], Point3& l, Point3& h) {
+    l = h = points[0];
+    for (int k = 1; k < N; ++k) {
+      const Point3 p = points[k];
       l = {std::min(l.x, p.x), std::min(l.y, p.y), std::min(l.z, p.z)};
       h = {std::max(h.x, p.x), std::max(h.y, p.y), std::max(h.z, p.z)};
     }
-    lo = {std::max(lo.x, l.x), std::max(lo.y, l.y), std::max(lo.z, l.z)};
-    hi = {std::min(hi.x, h.x), std::min(hi.y, h.y), std::min(hi.z, h.z)};
   }
 };
 
@@ -198,9 +205,10 @@ Point3 face_normal(const Point3 t[4], int i) {
 // 2^-e with 2^e about the largest |coordinate| of the points: scaling by it is exact (unless a coordinate
 // falls below 2^-1022 on the way) and keeps the determinants below representable at any scale (clamped
 // so that the factor itself is a normal double).
-inline double unit_scale(std::initializer_list<Point3> points) {
+template <int N>
+inline double unit_scale(const Point3 (&points)[N]) {
   double m = 0;
-  for (Point3 v : points) m = std::max({m, std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+  for (const Point3& v : points) m = std::max(std::max(m, std::fabs(v.x)), std::max(std::fabs(v.y), std::fabs(v.z)));
   // e as frexp gives it (m = f 2^e, 0.5 <= f < 1), from m's exponent field: field - 1022 for a normal m,
   // at most -1022 (clamped to -1000) for a subnormal one, 0 for 0 and for inf; then 2^-e from its field.
   std::uint64_t bits;
@@ -235,6 +243,7 @@ Point3 crossing(Point3 p, Point3 q, Point3 x, Point3 y, Point3 z) {
   // 2^-44 of |vp| + |vq| (an edge nearly parallel to the plane, a thin face, tiny differences), on the
   // coordinates themselves (the scaling rounds subnormal ones) and in units of the larger, however far
   // below the doubles the two lie.
+  const Point3 segment[2] = {p, q}, face[3] = {x, y, z};
   const double k = unit_scale({p, q, x, y, z});
   const Point3 sp = k * p, sq = k * q, sx = k * x, sy = k * y, sz = k * z;
   double bp, bq;
@@ -242,9 +251,7 @@ Point3 crossing(Point3 p, Point3 q, Point3 x, Point3 y, Point3 z) {
   if (!(bp + bq <= 0x1p-44 * (std::fabs(vp) + std::fabs(vq))))
     to_common_scale(orient3d_value(x, y, z, p), orient3d_value(x, y, z, q), vp, vq);
   // The crossing lies on the segment and in the face: the boxes' intersection bounds it.
-  Box box;
-  box.meet({p, q});
-  box.meet({x, y, z});
+  const Box box(segment, face);
   return clamp_to(between(p, q, vp, vq), box.lo, box.hi);
 }
 
@@ -258,6 +265,7 @@ Point3 crossing(Point3 p, Point3 q, Point3 r, Point3 s) {
   // In the common plane, seen along the axis where its normal is largest (any axis with a non-zero
   // component keeps orientations; the largest keeps them best conditioned): t = op / (op - oq) with op,
   // oq the orientations of p and q against the line r s (opposite signs), estimated or exact as above.
+  const Point3 first[2] = {p, q}, second[2] = {r, s};
   const double k = unit_scale({p, q, r, s});
   const Point3 sp = k * p, sq = k * q, sr = k * r, ss = k * s;
   const Point3 n1 = cross(sq - sp, sr - sp), n2 = cross(sq - sp, ss - sp);
@@ -269,9 +277,7 @@ Point3 crossing(Point3 p, Point3 q, Point3 r, Point3 s) {
   double op = orient2d_estimate(drop(sr), drop(ss), drop(sp), bp), oq = orient2d_estimate(drop(sr), drop(ss), drop(sq), bq);
   if (!(bp + bq <= 0x1p-44 * (std::fabs(op) + std::fabs(oq))))
     to_common_scale(orient2d_value(drop(r), drop(s), drop(p)), orient2d_value(drop(r), drop(s), drop(q)), op, oq);
-  Box box;
-  box.meet({p, q});
-  box.meet({r, s});
+  const Box box(first, second);
   return clamp_to(between(p, q, op, oq), box.lo, box.hi);
 }
 
