@@ -20,7 +20,6 @@ namespace {
 // meets det dX/dxi <= 0 or strays far from the triangle, or 60 iterations do not settle (w beyond the
 // image, where the polynomial map may fold).
 bool invert(const MappedTriangle& mt, Point w, Point& xi, Point& d1, Point& d2) {
-  double last = HUGE_VAL;
   for (int it = 0; it < 60; ++it) {
     Point x;
     mt.displacement(xi, x, d1, d2);
@@ -31,13 +30,11 @@ bool invert(const MappedTriangle& mt, Point w, Point& xi, Point& d1, Point& d2) 
     xi = xi + step;
     if (!(std::fabs(xi.x) + std::fabs(xi.y) < 8)) return false;
     const double size = std::fabs(step.x) + std::fabs(step.y);
-    // converged (after a step below 1e-9 the error is about nonlinearity * step^2, below round-off), or
-    // stalled at the round-off floor
-    if (size <= 1e-9 || (size < 1e-7 && size >= 0.5 * last)) {
+    // converged (after a step below 1e-9 the error is about nonlinearity * step^2, below round-off)
+    if (size <= 1e-9) {
       mt.displacement(xi, x, d1, d2);
       return true;
     }
-    last = size;
   }
   return false;
 }
