@@ -53,14 +53,13 @@ void legendre(double u, int n, double* l) {
 CurvedMethod::CurvedMethod(const FluidSide& fluid, const Integrand& integrand,
                            std::unique_ptr<TriangleIntegrator> straight, CouplingReport& counts)
     : fluid_(fluid), integrand_(integrand), points_(integrand, counts), straight_(std::move(straight)),
-      counts_(counts), stamp_of_(fluid.mesh().size(), 0u), done_of_(fluid.mesh().size(), 0u),
-      slot_of_(fluid.mesh().size(), 0) {
+      counts_(counts) {
   if (integrand.chain || integrand.c1 == 0) batch_ = std::make_unique<BatchIntegrator>(integrand, counts);
 }
 
 bool CurvedMethod::applies(const Integrand& integrand, int map_degree) {
   return integrand.fluid.fitted() && integrand.multiplier.fitted() && integrand.fluid_degree >= 0 &&
-         integrand.multiplier_degree >= 0 && map_degree >= 1 && map_degree <= kMaxPolynomialMapDegree;
+         integrand.multiplier_degree >= 0 && map_degree >= 2 && map_degree <= kMaxPolynomialMapDegree;
 }
 
 double CurvedMethod::integrate(const MappedTriangle& mt, LocalBlock& block) {
@@ -82,6 +81,12 @@ double CurvedMethod::integrate(const MappedTriangle& mt, LocalBlock& block) {
       Point d1, d2;
       mt.displacement(sample_xi_[s], sample_x_[s], d1, d2);
     }
+  if (stamp_of_.empty()) {  // the first curved triangle of the call: the marks over the fluid
+    const size_t n = static_cast<size_t>(fluid_.mesh().size());
+    stamp_of_.assign(n, 0u);
+    done_of_.assign(n, 0u);
+    slot_of_.assign(n, 0);
+  }
   if (++stamp_ == 0) {
     std::fill(stamp_of_.begin(), stamp_of_.end(), 0u);
     std::fill(done_of_.begin(), done_of_.end(), 0u);

@@ -45,7 +45,7 @@ class CurvedMethod : public TriangleIntegrator {
                CouplingReport& counts);
   double integrate(const MappedTriangle& mt, LocalBlock& block) override;
 
-  // Polynomial bases of known degrees and a map of known degree (1 to kMaxPolynomialMapDegree).
+  // Polynomial bases of known degrees and a map of known degree 2 to kMaxPolynomialMapDegree (P1b maps: 3).
   static bool applies(const Integrand& integrand, int map_degree);
 
   // Gauss points on an arc: the polynomial part's need and 1 to kMaxArcExtraPoints more, chosen from the map's
