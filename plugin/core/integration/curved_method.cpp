@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "errors.hpp"
+#include "fe/matrix_inverse.hpp"
 #include "fe/rules.hpp"
 #include "geometry/polynomial_roots.hpp"
 #include "sides/report.hpp"
@@ -75,6 +76,11 @@ double CurvedMethod::integrate(const MappedTriangle& mt, LocalBlock& block) {
     padua_rule(degree);
   }
   edges_.set(mt);
+  // the image's box widened by far more than its round-off: a fluid triangle or edge along an image edge is kept
+  extent_ = std::max(edges_.hi.x - edges_.lo.x, edges_.hi.y - edges_.lo.y);
+  const double margin = 1e-10 * extent_;
+  box_lo_ = {edges_.lo.x - margin, edges_.lo.y - margin};
+  box_hi_ = {edges_.hi.x + margin, edges_.hi.y + margin};
   for (int i = 0, s = 0; i <= 4; ++i)
     for (int j = 0; i + j <= 4; ++j, ++s) {
       sample_xi_[s] = {i / 4.0, j / 4.0};
@@ -128,9 +134,9 @@ void CurvedMethod::padua_rule(int degree) {
         padua_u_.push_back(std::cos(j * pi / degree));
         padua_v_.push_back(std::cos(k * pi / (degree + 1)));
       }
-  // V_(ij),q = L_i(u_q) L_j(v_q), i + j <= D, inverted by Gauss-Jordan elimination with partial pivoting.
+  // V_(ij),q = L_i(u_q) L_j(v_q), i + j <= D (row-major, a row per (ij)), and V^-1 (a row per point).
   const int n = static_cast<int>(padua_u_.size());
-  std::vector<double> v(static_cast<size_t>(n) * n), inverse(static_cast<size_t>(n) * n, 0);
+  std::vector<double> v(static_cast<size_t>(n) * n);
   double lu[kMaxBoxDegree + 2], lv[kMaxBoxDegree + 2];
   for (int q = 0; q < n; ++q) {
     legendre(padua_u_[q], degree, lu);
@@ -138,30 +144,7 @@ void CurvedMethod::padua_rule(int degree) {
     for (int i = 0, a = 0; i <= degree; ++i)
       for (int j = 0; i + j <= degree; ++j, ++a) v[static_cast<size_t>(a) * n + q] = lu[i] * lv[j];
   }
-  for (int a = 0; a < n; ++a) inverse[static_cast<size_t>(a) * n + a] = 1;
-  for (int c = 0; c < n; ++c) {
-    int pivot = c;
-    for (int r = c + 1; r < n; ++r)
-      if (std::fabs(v[static_cast<size_t>(r) * n + c]) > std::fabs(v[static_cast<size_t>(pivot) * n + c])) pivot = r;
-    for (int k = 0; k < n; ++k) {
-      std::swap(v[static_cast<size_t>(c) * n + k], v[static_cast<size_t>(pivot) * n + k]);
-      std::swap(inverse[static_cast<size_t>(c) * n + k], inverse[static_cast<size_t>(pivot) * n + k]);
-    }
-    const double d = v[static_cast<size_t>(c) * n + c];
-    for (int k = 0; k < n; ++k) {
-      v[static_cast<size_t>(c) * n + k] /= d;
-      inverse[static_cast<size_t>(c) * n + k] /= d;
-    }
-    for (int r = 0; r < n; ++r) {
-      const double f = v[static_cast<size_t>(r) * n + c];
-      if (r == c || f == 0) continue;
-      for (int k = 0; k < n; ++k) {
-        v[static_cast<size_t>(r) * n + k] -= f * v[static_cast<size_t>(c) * n + k];
-        inverse[static_cast<size_t>(r) * n + k] -= f * inverse[static_cast<size_t>(c) * n + k];
-      }
-    }
-  }
-  padua_inverse_.swap(inverse);
+  padua_inverse_ = inverse(v, n);
 }
 
 double CurvedMethod::piece(const MappedTriangle& mt, int kf, LocalBlock& block) {
@@ -169,9 +152,8 @@ double CurvedMethod::piece(const MappedTriangle& mt, int kf, LocalBlock& block) 
   FluidTriangle& f = fluid_triangle_;
   for (int j = 0; j < 3; ++j) f.w[j] = mesh.vertex(kf, j) - mt.origin();
   for (int j = 0; j < 3; ++j) f.e[j] = f.w[(j + 1) % 3] - f.w[j];
-  // K's box against the image's (widened by far more than its round-off: K along an image edge is kept)
-  const double margin = 1e-10 * std::max(edges_.hi.x - edges_.lo.x, edges_.hi.y - edges_.lo.y);
-  const Point lo{edges_.lo.x - margin, edges_.lo.y - margin}, hi{edges_.hi.x + margin, edges_.hi.y + margin};
+  // K's box against the image's
+  const Point lo = box_lo_, hi = box_hi_;
   const Point* w = f.w;
   if (std::max({w[0].x, w[1].x, w[2].x}) < lo.x || std::min({w[0].x, w[1].x, w[2].x}) > hi.x ||
       std::max({w[0].y, w[1].y, w[2].y}) < lo.y || std::min({w[0].y, w[1].y, w[2].y}) > hi.y)
@@ -187,9 +169,8 @@ double CurvedMethod::piece(const MappedTriangle& mt, int kf, LocalBlock& block) 
 void CurvedMethod::find_crossings() {
   FluidTriangle& f = fluid_triangle_;
   const int d = edges_.degree;
-  const double extent = std::max(edges_.hi.x - edges_.lo.x, edges_.hi.y - edges_.lo.y);
   for (int j = 0; j < 3; ++j) {
-    const double scale = 1e-13 * (std::fabs(f.e[j].x) + std::fabs(f.e[j].y)) * extent;
+    const double scale = 1e-13 * (std::fabs(f.e[j].x) + std::fabs(f.e[j].y)) * extent_;
     for (int i = 0; i < 3; ++i) {
       double sum = 0;
       for (int k = 0; k <= d; ++k) {
@@ -204,7 +185,7 @@ void CurvedMethod::find_crossings() {
   for (int j = 0; j < 3; ++j) crossings_[j].clear();
   // K's box: an image edge whose control points' box misses it has no part in K and no crossing with K's edges
   // (the boxes widened by far more than their round-off, so that an image edge along a fluid edge is kept)
-  const double margin = 1e-10 * extent;
+  const double margin = 1e-10 * extent_;
   const Point klo{std::min({f.w[0].x, f.w[1].x, f.w[2].x}) - margin, std::min({f.w[0].y, f.w[1].y, f.w[2].y}) - margin};
   const Point khi{std::max({f.w[0].x, f.w[1].x, f.w[2].x}) + margin, std::max({f.w[0].y, f.w[1].y, f.w[2].y}) + margin};
   for (int i = 0; i < 3; ++i)
@@ -298,9 +279,7 @@ void CurvedMethod::add_fluid_edges(const MappedTriangle& mt, int kf) {
 
 void CurvedMethod::add_fluid_edge(const MappedTriangle& mt, int j) {
   const FluidTriangle& f = fluid_triangle_;
-  const double box_margin = 1e-10 * std::max(edges_.hi.x - edges_.lo.x, edges_.hi.y - edges_.lo.y);
-  const Point lo{edges_.lo.x - box_margin, edges_.lo.y - box_margin};
-  const Point hi{edges_.hi.x + box_margin, edges_.hi.y + box_margin};
+  const Point lo = box_lo_, hi = box_hi_;
   bool along_image = false;
   for (int i = 0; i < 3; ++i) along_image = along_image || f.coincident[i][j];
   // on an image edge (coincident boundaries) a point is not inside: T's edge carries that part

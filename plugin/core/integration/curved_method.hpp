@@ -129,6 +129,8 @@ class CurvedMethod : public TriangleIntegrator {
   std::vector<double> rule_weight_;
   std::vector<std::array<double, 4>> rule_jacobian_;
   ImageEdges edges_;
+  double extent_ = 0;     // the image's box's larger width
+  Point box_lo_, box_hi_;  // the box widened by 1e-10 extent_ (relative to the map's origin)
   Point sample_xi_[15], sample_x_[15];  // X - origin on the degree-4 lattice of T: Newton's starts
   std::vector<unsigned> stamp_of_;      // the fluid triangles met for this triangle
   std::vector<int> candidates_;
