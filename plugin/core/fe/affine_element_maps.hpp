@@ -23,6 +23,14 @@ class AffineElementMaps {
     const Point d = x - mesh_.vertex(k, 0);
     return {j[0] * d.x + j[1] * d.y, j[2] * d.x + j[3] * d.y};
   }
+  // The same for x given relative to origin (x_local = x - origin), with element k's first corner translated
+  // exactly by -origin (the caller's condition; FluidSearchOf checks it for the elements it visits): the
+  // difference x - corner is then formed from the local coordinates. Origin 0 gives to_reference(k, x).
+  Point to_reference(int k, Point x_local, Point origin) const {
+    const double* j = inverse_jacobian(k);
+    const Point d = x_local - (mesh_.vertex(k, 0) - origin);
+    return {j[0] * d.x + j[1] * d.y, j[2] * d.x + j[3] * d.y};
+  }
 
  private:
   const Mesh& mesh_;

@@ -59,6 +59,8 @@ class PolynomialBasis {
 
   // The reference coordinates of point x in element k (the inverse of the element's affine map).
   Point to_reference(int k, Point x) const { return maps_.to_reference(k, x); }
+  // The same for x given relative to origin (AffineElementMaps::to_reference).
+  Point to_reference(int k, Point x_local, Point origin) const { return maps_.to_reference(k, x_local, origin); }
   // d xi / d x on element k (AffineElementMaps::inverse_jacobian).
   const double* inverse_jacobian(int k) const { return maps_.inverse_jacobian(k); }
 

@@ -1,5 +1,7 @@
 // The piece shared by two triangles: a convex polygon of at most 6 vertices.
 #pragma once
+#include <cmath>
+
 #include "point.hpp"
 
 namespace dlmfsi {
@@ -44,6 +46,23 @@ struct Rest {
   Piece piece;
 };
 Piece clip(const Point a[3], const Point b[3], unsigned& beyond, Rest& rest);
+
+// out = t - o for the n points of t when every coordinate's subtraction is exact (its TwoSum error term is
+// zero); false otherwise (out is then not to be used). An exact translation changes no orient2d sign and no
+// lexicographic order, so clip decides everything on translated triangles as on the originals, and its
+// pieces are the originals' translated exactly, except that crossings are constructed from the translated
+// coordinates: rounded to the ulp of the local coordinates rather than of |t|.
+inline bool translate_exactly(const Point* t, int n, Point o, Point* out) {
+  double error = 0;
+  for (int i = 0; i < n; ++i) {
+    const double dx = t[i].x - o.x, dy = t[i].y - o.y;
+    // TwoSum(a, -b) with s = a - b: the error (a - (s + b)) + (-b - (s - (s + b))) is 0 iff s is exact.
+    const double ax = dx + o.x, ay = dy + o.y;
+    error += std::fabs((t[i].x - ax) - (o.x + (dx - ax))) + std::fabs((t[i].y - ay) - (o.y + (dy - ay)));
+    out[i] = {dx, dy};
+  }
+  return error == 0;
+}
 
 // The point where segments [p, q] and [r, s] cross (they must cross properly), canonical in the order of
 // the four arguments and of the two segments.

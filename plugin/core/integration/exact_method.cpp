@@ -1,6 +1,7 @@
 #include "integration/exact_method.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <string>
@@ -69,13 +70,39 @@ double ExactMethod::clip(const ClippedImage& image, const Point img[3], LocalBlo
                 (o == 0 ? "flat)" : "clockwise)"));
   PieceIntegrator& integrator = image.triangle.affine && affine_ ? *affine_ : *general_;
   double covered = 0;
-  search_.for_each_piece(img, hint_, [&](int kf, const Piece& piece) {
+  auto add_piece = [&](const ClippedImage& in, int kf, const Piece& piece) {
     covered += piece.area();
     ++counts_.pieces;
     block.enter_fluid_element(fluid_.dofs(kf));
-    integrator.integrate(image, kf, piece, block);
-  });
-  return 0.5 * area2(img[0], img[1], img[2]) - covered;
+    integrator.integrate(in, kf, piece, block);
+  };
+  // The image's area: area2 of the exactly translated corners equals area2 of img bit for bit.
+  const double area = 0.5 * area2(img[0], img[1], img[2]);
+  const Point origin = image.triangle.affine && !image.part ? local_origin(img) : Point();
+  if (origin != Point()) {
+    const int hint = hint_;
+    local_pieces_.clear();
+    const bool exact = search_.for_each_piece(img, origin, hint_, [&](int kf, const Piece& piece) {
+      local_pieces_.emplace_back(kf, piece);
+    });
+    if (exact) {
+      const ClippedImage local{image.triangle, image.degree, image.part, origin};
+      for (const auto& [kf, piece] : local_pieces_) add_piece(local, kf, piece);
+      return area - covered;
+    }
+    hint_ = hint;  // in absolute coordinates, from the same start
+  }
+  search_.for_each_piece(img, hint_, [&](int kf, const Piece& piece) { add_piece(image, kf, piece); });
+  return area - covered;
+}
+
+Point ExactMethod::local_origin(const Point img[3]) {
+  const double size = std::max(std::max(img[0].x, std::max(img[1].x, img[2].x)) -
+                                   std::min(img[0].x, std::min(img[1].x, img[2].x)),
+                               std::max(img[0].y, std::max(img[1].y, img[2].y)) -
+                                   std::min(img[0].y, std::min(img[1].y, img[2].y)));
+  const double far = kLocalRatio * size;
+  return {std::fabs(img[0].x) >= far ? img[0].x : 0.0, std::fabs(img[0].y) >= far ? img[0].y : 0.0};
 }
 
 }  // namespace dlmfsi

@@ -6,10 +6,16 @@
 // nonlinear_rule_degree of the map's nonlinearity (about 1e-13). An image too far from affine (nonlinearity
 // above kLeafNonlinearity), or with curved edges (4^subdivide straight sub-triangles, default subdivide 2),
 // is split into straight parts first (split.hpp), each with the rule of its own nonlinearity.
+// On an affine triangle whose image is small against its distance from an axis (kLocalRatio), the image is
+// clipped and integrated in coordinates relative to its first corner along that axis (local_origin): every
+// decision of the clip is the same as in absolute coordinates, but the pieces' crossings and rule points are
+// rounded to the image's size rather than to |y|, so the result does not depend on where the solid sits. When
+// a fluid triangle met does not translate exactly, the image is done again in absolute coordinates.
 // The area outside the fluid mesh is the image's area less the pieces'; below the round-off of the pieces'
 // corners (MappedTriangle::area_round_off) it is 0.
 #pragma once
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "mesh/fluid_search.hpp"
@@ -34,6 +40,10 @@ class ExactMethod : public TriangleIntegrator {
   // Clips the straight image img (the whole image or a part) and integrates its pieces; returns img's area
   // less the pieces'.
   double clip(const ClippedImage& image, const Point img[3], LocalBlock& block);
+  // Per axis, img[0]'s coordinate where it is at least kLocalRatio times the image's size (its box's larger
+  // side), else 0: then img translates exactly (Sterbenz), and so does any fluid corner within |origin| / 2.
+  static Point local_origin(const Point img[3]);
+  static constexpr double kLocalRatio = 1024;
 
   const FluidSide& fluid_;
   FluidSearch& search_;
@@ -42,6 +52,7 @@ class ExactMethod : public TriangleIntegrator {
   std::unique_ptr<PieceIntegrator> general_, affine_;
   CouplingReport& counts_;
   std::vector<MapPart> parts_;
+  std::vector<std::pair<int, Piece>> local_pieces_;  // the pieces of an image in local coordinates, kept
   static constexpr int kMaxLeafDepth = 30, kMaxLeaves = 100000;  // split_image's limits
 };
 

@@ -130,7 +130,7 @@ size_t BatchIntegrator::gather(const ClippedImage& image, int kf, const Piece& p
   Point eta_corner[Piece::kMaxVertices], xi_corner[Piece::kMaxVertices];
   for (int v = 0; v < piece.n; ++v) {
     xi_corner[v] = image.guess(piece.v[v]);
-    eta_corner[v] = integrand_.fluid.to_reference(kf, piece.v[v]);
+    eta_corner[v] = integrand_.fluid.to_reference(kf, piece.v[v], image.origin);  // the piece is relative to it
   }
   if (!mt.affine) {
     std::array<double, 4> jacobian[Piece::kMaxVertices];  // not used

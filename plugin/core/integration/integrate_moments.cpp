@@ -69,14 +69,16 @@ void MomentIntegrator::integrate(const ClippedImage& image, int kf, const Piece&
   const Moments moments(piece);
   counts_.points += 1;
   if (!(moments.area > 0)) return;  // a piece of round-off size: nothing to add
-  (this->*add_)(image.triangle, kf, moments, block);
+  (this->*add_)(image, kf, moments, block);
 }
 
 template <int FW, int SW>
-void MomentIntegrator::add(const MappedTriangle& mt, int kf, const Moments& mo, LocalBlock& block) {
+void MomentIntegrator::add(const ClippedImage& image, int kf, const Moments& mo, LocalBlock& block) {
+  const MappedTriangle& mt = image.triangle;
   const int fw = FW ? FW : fluid_functions_, sw = SW ? SW : multiplier_functions_;
   const PolynomialBasis &fluid = integrand_.fluid, &multiplier = integrand_.multiplier;
-  const Point eta = fluid.to_reference(kf, mo.centroid), xi = mt.affine_reference(mo.centroid);
+  // the centroid relative to image.origin, as the piece
+  const Point eta = fluid.to_reference(kf, mo.centroid, image.origin), xi = image.pull_back(mo.centroid);
   double fv[kMaxFunctions], fgx[kMaxFunctions], fgy[kMaxFunctions];
   double sv[kMaxFunctions], sgx[kMaxFunctions], sgy[kMaxFunctions];
   fluid.evaluate_affine(kf, eta, fv, fgx, fgy);

@@ -26,7 +26,7 @@ class MomentIntegrator : public PieceIntegrator {
   // The block's part once the moments are known; FW and SW the numbers of fitted functions when fixed at
   // compile time (P1 x P1: 3 and 3), 0 for any.
   template <int FW, int SW>
-  void add(const MappedTriangle& mt, int kf, const Moments& moments, LocalBlock& block);
+  void add(const ClippedImage& image, int kf, const Moments& moments, LocalBlock& block);
 
   const Integrand& integrand_;
   CouplingReport& counts_;
@@ -34,7 +34,7 @@ class MomentIntegrator : public PieceIntegrator {
   int fluid_functions_, multiplier_functions_;
   // One pair that reads every fitted function in order (a scalar space on each side).
   bool one_pair_;
-  void (MomentIntegrator::*add_)(const MappedTriangle&, int, const Moments&, LocalBlock&);
+  void (MomentIntegrator::*add_)(const ClippedImage&, int, const Moments&, LocalBlock&);
 };
 
 }  // namespace dlmfsi

@@ -26,19 +26,20 @@ void PointIntegrator::integrate(const ClippedImage& image, int kf, const Piece& 
     const double area = 0.5 * area2(tri[0], tri[1], tri[2]);
     for (const RulePoint& q : rule) {
       const Point y = from_reference(tri, q.xi);
+      // y relative to image.origin (0 where the map is not affine)
       MapValue mv;
-      const Point xi = mt.pull_back(y, from_reference(guess, q.xi), mv);
+      const Point xi = mt.affine ? image.pull_back(y) : mt.pull_back(y, from_reference(guess, q.xi), mv);
       const double det = mt.affine ? mt.affine_det : det2(mv.jac);
       if (!(det > 0)) throw Error("the map folds solid triangle " + std::to_string(mt.k));
-      add_point(kf, y, mt.k, xi, area * q.weight / det, mv.jac, block);
+      add_reference_point(kf, integrand_.fluid.to_reference(kf, y, image.origin), mt.k, xi, area * q.weight / det,
+                          mt.affine ? mt.affine_value.jac : mv.jac, block);
     }
   }
 }
 
-void PointIntegrator::add_point(int kf, Point y, int ks, Point xi, double ds, const double jac[2][2],
-                                LocalBlock& block) {
-  const PolynomialBasis& fluid = integrand_.fluid;
-  fluid.evaluate(kf, fluid.to_reference(kf, y), fluid_values_.data());
+void PointIntegrator::add_reference_point(int kf, Point eta, int ks, Point xi, double ds, const double jac[2][2],
+                                          LocalBlock& block) {
+  integrand_.fluid.evaluate(kf, eta, fluid_values_.data());
   integrand_.multiplier.evaluate(ks, xi, multiplier_values_.data());
   ++counts_.points;
   const int fluid_components = integrand_.fluid_space.components();

@@ -21,9 +21,14 @@ class PointIntegrator : public PieceIntegrator {
 
   // block += ds f_ij at one point: y in fluid element kf (entered in the block), xi its reference point in
   // solid triangle ks, jac = dX/ds there. The quadrature method adds its points through this.
-  void add_point(int kf, Point y, int ks, Point xi, double ds, const double jac[2][2], LocalBlock& block);
+  void add_point(int kf, Point y, int ks, Point xi, double ds, const double jac[2][2], LocalBlock& block) {
+    add_reference_point(kf, integrand_.fluid.to_reference(kf, y), ks, xi, ds, jac, block);
+  }
 
  private:
+  // The same with eta, y's reference point in fluid element kf.
+  void add_reference_point(int kf, Point eta, int ks, Point xi, double ds, const double jac[2][2], LocalBlock& block);
+
   const Integrand& integrand_;
   CouplingReport& counts_;
   // Both bases at the point, in Basis::evaluate's layout

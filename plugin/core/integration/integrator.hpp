@@ -48,23 +48,29 @@ struct IntegrandOf {
 using Integrand = IntegrandOf<Basis, PolynomialBasis>;
 
 // The straight image (or part of a split image, split.hpp) of a solid triangle that is clipped against the
-// fluid: its pieces are integrated in fluid coordinates.
+// fluid: its pieces are integrated in fluid coordinates relative to origin, y_local = y - origin. The origin is
+// 0 except on affine triangles far from it against their size (ExactMethod), where the image's corners and the
+// corners of every fluid triangle it meets translate exactly (FluidSearchOf::for_each_piece with an origin):
+// the fluid basis is then evaluated at A_K^-1(y_local - (v0_K - origin)) and the affine pull-back is
+// A^-1(y_local - (image[0] - origin)), both differences formed in local coordinates.
 struct ClippedImage {
   const MappedTriangle& triangle;
   int degree;           // of the rule on a piece where the map is not affine (exact for the product where it is)
   const MapPart* part;  // the part of a split image, or nullptr for the whole image
+  Point origin = {};    // nonzero only on affine triangles (Newton's pull-back works in absolute coordinates)
 
-  // The reference point of fluid point y in the solid triangle: the affine pull-back, or Newton's from the
-  // affine guess of the triangle or, in a part, of the part.
-  Point pull_back(Point y) const {
-    if (triangle.affine) return triangle.affine_reference(y);
+  // The reference point of fluid point y_local in the solid triangle: the affine pull-back, or Newton's from
+  // the affine guess of the triangle or, in a part, of the part.
+  Point pull_back(Point y_local) const {
+    if (triangle.affine) return triangle.affine_reference(y_local, origin);
     MapValue at;
-    return triangle.pull_back(y, guess(y), at);
+    return triangle.pull_back(y_local, guess(y_local), at);
   }
-  // Newton's starting point for y: the affine pull-back of the triangle or, in a part, of the part (the
+  // Newton's starting point for y_local: the affine pull-back of the triangle or, in a part, of the part (the
   // pull-back itself on an affine triangle).
-  Point guess(Point y) const {
-    return part ? from_reference(part->xi, to_reference(part->y, y)) : triangle.affine_reference(y);
+  Point guess(Point y_local) const {
+    if (part) return from_reference(part->xi, to_reference(part->y, y_local));
+    return triangle.affine_reference(y_local, origin);
   }
 };
 

@@ -59,6 +59,12 @@ class MappedTriangle : public TriangleMap {
     const Point d = y - image[0];
     return {image_inv_[0][0] * d.x + image_inv_[0][1] * d.y, image_inv_[1][0] * d.x + image_inv_[1][1] * d.y};
   }
+  // The same for y given relative to origin (y_local = y - origin), image[0] translated exactly by -origin
+  // (the caller's condition). Origin 0 gives affine_reference(y).
+  Point affine_reference(Point y_local, Point origin) const {
+    const Point d = y_local - (image[0] - origin);
+    return {image_inv_[0][0] * d.x + image_inv_[0][1] * d.y, image_inv_[1][0] * d.x + image_inv_[1][1] * d.y};
+  }
 
  private:
   // The largest |coordinate| of the corner images.

@@ -29,6 +29,8 @@ struct Triangles {
   static int side(const Mesh& m, int k, int i, Point p) {
     return orient2d(m.vertex(k, (i + 1) % 3), m.vertex(k, (i + 2) % 3), p);
   }
+  // out = t - o when exact (translate_exactly in clip.hpp), for the search's pieces in local coordinates.
+  static bool translate(const Point t[3], Point o, Point out[3]) { return translate_exactly(t, 3, o, out); }
   struct Faces {  // clip forms nothing ahead for a triangle
     void set(const Point*) {}
   };

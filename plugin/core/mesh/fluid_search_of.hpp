@@ -39,9 +39,23 @@ class FluidSearchOf {
   // outside the fluid mesh, and after the walk when t reaches beyond a boundary facet of a visited element
   // (t may re-enter a non-convex mesh). hint: where the walk starts, updated to an element that meets t.
   template <class Visit>
-  void for_each_piece(const PointT t[kCorners], int& hint, Visit&& visit);
+  void for_each_piece(const PointT t[kCorners], int& hint, Visit&& visit) {
+    walk<false>(t, PointT(), hint, visit);
+  }
+  // The same with every piece in coordinates relative to origin: t and each fluid element met are translated
+  // by -origin before they are clipped (Elements::translate), which decides every side as on the absolute
+  // coordinates when the translation is exact, and constructs crossings to the local coordinates' ulp. Returns
+  // false, having visited some pieces (to be discarded), when it is not exact for t or for an element met;
+  // locating and walking use the absolute coordinates, so the elements visited are those of the overload above.
+  template <class Visit>
+  bool for_each_piece(const PointT t[kCorners], PointT origin, int& hint, Visit&& visit) {
+    return walk<true>(t, origin, hint, visit);
+  }
 
  private:
+  // for_each_piece, with the pieces relative to origin when Local (then false when a translation is not exact).
+  template <bool Local, class Visit>
+  bool walk(const PointT t_absolute[kCorners], PointT origin, int& hint, Visit& visit);
   // Does p lie in the closed element k?
   bool in_element(int k, PointT p) const {
     for (int i = 0; i < kCorners; ++i)
@@ -96,15 +110,27 @@ int FluidSearchOf<Elements>::locate(PointT p, int hint) const {
 }
 
 template <class Elements>
-template <class Visit>
-void FluidSearchOf<Elements>::for_each_piece(const PointT t[kCorners], int& hint, Visit&& visit) {
+template <bool Local, class Visit>
+bool FluidSearchOf<Elements>::walk(const PointT t_absolute[kCorners], PointT origin, int& hint, Visit& visit) {
   if (++stamp_ == 0) {  // wrapped: clear the marks
     std::fill(stamp_of_.begin(), stamp_of_.end(), 0u);
     stamp_ = 1;
   }
+  // t: what is clipped (t translated when Local); t_absolute: what is located and walked.
+  PointT t_local[kCorners];
+  if constexpr (Local) {
+    if (!Elements::translate(t_absolute, origin, t_local)) return false;
+  }
+  const PointT* t = Local ? t_local : t_absolute;
   typename Elements::Faces t_faces;  // what clip needs of t, formed once for all the elements it meets
   t_faces.set(t);
   PointT k_corners[kCorners];
+  // the corners of fluid element k as clipped: translated when Local (false when not exactly)
+  auto corners_of = [&](int k) {
+    fluid_.corners(k, k_corners);
+    if constexpr (Local) return Elements::translate(k_corners, origin, k_corners);
+    return true;
+  };
   unsigned beyond;
   // The front may start from any element that meets t: with kClipHintFirst the hint's first (the last
   // element's start, which meets t when the elements come in an order that keeps neighbours together),
@@ -113,14 +139,14 @@ void FluidSearchOf<Elements>::for_each_piece(const PointT t[kCorners], int& hint
   PieceT first;
   typename Elements::Rest rest;
   if (Elements::kClipHintFirst && hint >= 0 && hint < fluid_.size()) {
-    fluid_.corners(hint, k_corners);
+    if (!corners_of(hint)) return false;
     first = Elements::clip(t, t_faces, k_corners, beyond, rest);
     if (first.n > 0) start = hint;
   }
   if (start < 0) {
-    start = locate(Elements::centroid(t), hint);
+    start = locate(Elements::centroid(t_absolute), hint);
     if (start >= 0 && !(Elements::kClipHintFirst && start == hint)) {  // the hint's piece is empty already
-      fluid_.corners(start, k_corners);
+      if (!corners_of(start)) return false;
       first = Elements::clip(t, t_faces, k_corners, beyond, rest);
     }
   }
@@ -133,10 +159,12 @@ void FluidSearchOf<Elements>::for_each_piece(const PointT t[kCorners], int& hint
       // conforms).
       const int facet = Elements::rest_facet(rest);
       const int across = facet >= 0 ? fluid_.neighbours[start][facet] : -1;
-      if (across >= 0 && holds_corners(across, t, Elements::rest_corners(rest))) {
+      if (across >= 0 && holds_corners(across, t_absolute, Elements::rest_corners(rest))) {
+        // across's corners are start's but one, which lies beyond the facet: translated exactly too?
+        if (Local && !corners_of(across)) return false;
         visit(start, first);
         visit(across, *Elements::rest_piece(rest));
-        return;
+        return true;
       }
       queue_.clear();
       queue_.push_back(start);
@@ -145,7 +173,7 @@ void FluidSearchOf<Elements>::for_each_piece(const PointT t[kCorners], int& hint
       for (std::size_t q = 0; q < queue_.size(); ++q) {
         const int k = queue_[q];
         if (q > 0) {
-          fluid_.corners(k, k_corners);
+          if (!corners_of(k)) return false;
           const PieceT piece = Elements::clip(t, t_faces, k_corners, beyond);
           if (piece.n == 0) continue;
           visit(k, piece);
@@ -163,20 +191,25 @@ void FluidSearchOf<Elements>::for_each_piece(const PointT t[kCorners], int& hint
       // The walk reached every piece unless t leaves the fluid mesh across a boundary facet of a visited
       // element: on a non-convex mesh (a notch, a hole) t may come back in elsewhere, and the part of t
       // inside is then disconnected. The grid finds the other parts (the marks skip what the walk tested).
-      if (!at_boundary) return;
+      if (!at_boundary) return true;
     }
   }
   // The centroid is outside the fluid mesh (or its element misses a sliver t), or t may leave and re-enter
   // the mesh: test the grid's candidates.
-  grid_.for_each_near(t, kCorners, [&](int k) {
-    if (!mark(k)) return;
-    fluid_.corners(k, k_corners);
+  bool exact = true;
+  grid_.for_each_near(t_absolute, kCorners, [&](int k) {
+    if (!exact || !mark(k)) return;
+    if (!corners_of(k)) {
+      exact = false;
+      return;
+    }
     const PieceT piece = Elements::clip(t, t_faces, k_corners, beyond);
     if (piece.n > 0) {
       hint = k;
       visit(k, piece);
     }
   });
+  return exact;
 }
 
 }  // namespace dlmfsi
