@@ -221,6 +221,63 @@ TEST(ClipTiling, SolidEdgesOnFluidEdges) {
   }
 }
 
+// A small triangle far from the origin, clipped relative to its first corner: the same fluid triangles in the
+// same order, the same pieces (each corner of t or of a fluid triangle translated exactly, each crossing within
+// round-off of the absolute one), and the pieces' areas add up to t's area to round-off of t's size, where in
+// absolute coordinates the crossings are rounded to ulp(1000), 1e-6 of t's size. A fluid triangle whose
+// corners do not translate exactly (a corner at 0.1, far from the origin 1000) makes the search say so.
+TEST(ClipTiling, LocalCoordinatesKeepEveryDecision) {
+  const double h = 1e-7;
+  Mesh fluid = test::grid_mesh(6, 5, 1000 - 0.3 * h, 2000 - 0.2 * h, 1.7 * h, 1.3 * h, true);
+  FluidGrid grid(fluid);
+  FluidSearch search(grid);
+  const Point t[3] = {{1000 + 0.01 * h, 2000 + 0.02 * h}, {1000 + 0.97 * h, 2000 + 0.11 * h},
+                      {1000 + 0.43 * h, 2000 + 1.03 * h}};
+  const Point o = t[0];
+  const double area = 0.5 * area2(t[0], t[1], t[2]);  // the differences are exact
+  std::vector<int> absolute_k, local_k;
+  std::vector<Piece> absolute, local;
+  int hint = 0;
+  search.for_each_piece(t, hint, [&](int k, const Piece& p) {
+    absolute_k.push_back(k);
+    absolute.push_back(p);
+  });
+  hint = 0;
+  EXPECT_TRUE(search.for_each_piece(t, o, hint, [&](int k, const Piece& p) {
+    local_k.push_back(k);
+    local.push_back(p);
+  }));
+  ASSERT_EQ(absolute_k, local_k);
+  ASSERT_GT(absolute.size(), 4u);
+  double absolute_sum = 0, local_sum = 0;
+  for (size_t i = 0; i < absolute.size(); ++i) {
+    ASSERT_EQ(absolute[i].n, local[i].n);
+    absolute_sum += absolute[i].area();
+    local_sum += local[i].area();
+    for (int v = 0; v < local[i].n; ++v) {
+      const Point a = absolute[i].v[v], l = local[i].v[v];
+      bool corner = a == t[0] || a == t[1] || a == t[2];
+      for (const Point& p : fluid.vertices) corner = corner || a == p;
+      if (corner) {
+        EXPECT_TRUE(l == a - o);
+      } else {  // a crossing: the absolute one is rounded to ulp(1000) = 1.1e-13
+        EXPECT_NEAR(l.x + o.x, a.x, 3e-13);
+        EXPECT_NEAR(l.y + o.y, a.y, 5e-13);
+      }
+    }
+  }
+  EXPECT_NEAR(local_sum, area, 1e-14 * area);
+  EXPECT_GT(std::fabs(absolute_sum - area), 1e-12 * area);  // what the local coordinates mend
+  Mesh coarse = test::grid_mesh(1, 1, 0.1, 0.1, 3000, 3000);
+  FluidGrid coarse_grid(coarse);
+  FluidSearch coarse_search(coarse_grid);
+  hint = 0;
+  EXPECT_FALSE(coarse_search.for_each_piece(t, o, hint, [](int, const Piece&) {}));
+  double sum = 0;
+  coarse_search.for_each_piece(t, hint, [&](int, const Piece& p) { sum += p.area(); });
+  EXPECT_NEAR(sum, area, 1e-15 * area);  // in absolute coordinates: t inside one fluid triangle, the piece is t
+}
+
 TEST(ClipTiling, FluidTrianglePiecesTileTheCoveredPart) {
   // A solid mesh over a fluid triangle: the pieces inside the fluid triangle add up to its area.
   Mesh solid = test::grid_mesh(7, 5, -0.05, -0.03, 1.2, 1.1, true);
