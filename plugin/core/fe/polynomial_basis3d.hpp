@@ -56,10 +56,14 @@ class PolynomialBasis3 {
 
   // The reference coordinates of x in element k (the inverse of the element's affine map).
   Point3 to_reference(int k, Point3 x) const { return frames_.to_reference(k, x); }
+  // The same for x given relative to origin (AffineElementMaps3::to_reference).
+  Point3 to_reference(int k, Point3 x_local, Point3 origin) const { return frames_.to_reference(k, x_local, origin); }
   // d xi_i / d x_j of element k, row-major.
   const double* inverse_jacobian(int k) const { return frames_.inverse_jacobian(k); }
   // The point of element k at reference coordinates xi; its edge i (d x / d xi_(i+1)).
   Point3 from_reference(int k, Point3 xi) const { return frames_.from_reference(k, xi); }
+  // The same relative to origin (AffineElementMaps3::from_reference).
+  Point3 from_reference(int k, Point3 xi, Point3 origin) const { return frames_.from_reference(k, xi, origin); }
   Point3 edge(int k, int i) const { return frames_.edge(k, i); }
   // Does element k use the shared fit (that of element 0)?
   bool shared(int k) const { return slot_[k] < 0; }

@@ -113,6 +113,23 @@ Piece3 clip(const Point3 a[4], const Point3 b[4], unsigned& beyond);
 // every fluid tetrahedron it meets).
 Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsigned& beyond);
 
+// out = t - o for the n points of t when every coordinate's subtraction is exact (its TwoSum error term is
+// zero); false otherwise. An exact translation changes no orient3d sign and no lexicographic order, so clip
+// decides everything on translated tetrahedra as on the originals; only the crossings, constructed from the
+// translated coordinates, are rounded to the ulp of the local coordinates rather than of |t|.
+inline bool translate_exactly(const Point3* t, int n, Point3 o, Point3* out) {
+  double error = 0;
+  for (int i = 0; i < n; ++i) {
+    const Point3 d = t[i] - o, back = d + o;
+    // TwoSum(a, -b) with s = a - b: the error (a - (s + b)) - (b + (s - (s + b))) is 0 iff s is exact.
+    error += std::fabs((t[i].x - back.x) - (o.x + (d.x - back.x))) +
+             std::fabs((t[i].y - back.y) - (o.y + (d.y - back.y))) +
+             std::fabs((t[i].z - back.z) - (o.z + (d.z - back.z)));
+    out[i] = d;
+  }
+  return error == 0;
+}
+
 // The point where segment [p, q] crosses the plane through x, y, z (it must cross it), canonical in the
 // order of p, q and of x, y, z.
 Point3 crossing(Point3 p, Point3 q, Point3 x, Point3 y, Point3 z);

@@ -100,12 +100,41 @@ double ExactMethod3::clip(const ClippedImage3& image, const Point3 img[4], Local
                 " (a sub-tetrahedron's image is " + (o == 0 ? "flat)" : "negatively oriented)"));
   PieceIntegrator3& integrator = affine_ && image.tetrahedron.affine ? *affine_ : *general_;
   double covered = 0;
-  search_.for_each_piece(img, hint_, [&](int kf, const Piece3& piece) {
+  auto add_piece = [&](const ClippedImage3& in, int kf, const Piece3& piece) {
     ++counts_.pieces;
     block.enter_fluid_element(fluid_.dofs(kf));
-    covered += integrator.integrate(image, kf, piece, block);
-  });
-  return volume6(img[0], img[1], img[2], img[3]) / 6 - covered;
+    covered += integrator.integrate(in, kf, piece, block);
+  };
+  // The image's volume: volume6 of the exactly translated corners equals volume6 of img bit for bit.
+  const double volume = volume6(img[0], img[1], img[2], img[3]) / 6;
+  const Point3 origin = image.tetrahedron.affine && !image.sub_xi ? local_origin(img) : Point3();
+  if (origin != Point3()) {
+    const int hint = hint_;
+    local_pieces_.clear();
+    const bool exact = search_.for_each_piece(img, origin, hint_, [&](int kf, const Piece3& piece) {
+      local_pieces_.emplace_back(kf, piece);
+    });
+    if (exact) {
+      ClippedImage3 local = image;
+      local.origin = origin;
+      for (const auto& [kf, piece] : local_pieces_) add_piece(local, kf, piece);
+      return volume - covered;
+    }
+    hint_ = hint;  // in absolute coordinates, from the same start
+  }
+  search_.for_each_piece(img, hint_, [&](int kf, const Piece3& piece) { add_piece(image, kf, piece); });
+  return volume - covered;
+}
+
+Point3 ExactMethod3::local_origin(const Point3 img[4]) {
+  Point3 lo = img[0], hi = img[0];
+  for (int i = 1; i < 4; ++i) {
+    lo = {std::min(lo.x, img[i].x), std::min(lo.y, img[i].y), std::min(lo.z, img[i].z)};
+    hi = {std::max(hi.x, img[i].x), std::max(hi.y, img[i].y), std::max(hi.z, img[i].z)};
+  }
+  const double far = kLocalRatio * std::max(hi.x - lo.x, std::max(hi.y - lo.y, hi.z - lo.z));
+  auto axis = [far](double v) { return std::fabs(v) >= far ? v : 0.0; };
+  return {axis(img[0].x), axis(img[0].y), axis(img[0].z)};
 }
 
 }  // namespace dlmfsi

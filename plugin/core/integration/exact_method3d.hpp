@@ -10,6 +10,7 @@
 // The volume outside the fluid mesh is the image's volume less the pieces'.
 #pragma once
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "integration/integrator3d.hpp"
@@ -33,6 +34,12 @@ class ExactMethod3 : public TetrahedronIntegrator {
   // Clips the straight tetrahedron img (the image, or a sub-tetrahedron's) and integrates its pieces;
   // returns img's volume less the pieces'.
   double clip(const ClippedImage3& image, const Point3 img[4], LocalBlock& block);
+  // Per axis, img[0]'s coordinate where it is at least kLocalRatio times the image's size (its box's largest
+  // side), else 0. An affine image far from the origin against its size is clipped and integrated relative
+  // to it, as in 2D (ExactMethod): every decision as in absolute coordinates, the constructed points rounded
+  // to the image's size; in absolute coordinates when a fluid tetrahedron met does not translate exactly.
+  static Point3 local_origin(const Point3 img[4]);
+  static constexpr double kLocalRatio = 1024;
   // clip(), or where the map's nonlinearity on the straight tetrahedron y (the images of the reference
   // points xi) is above kSplitNonlinearity3 and qforder is automatic, clip() of its parts (split3d.hpp),
   // each with the rule of its own nonlinearity; throws Error when the split needs more than its limits.
@@ -50,6 +57,7 @@ class ExactMethod3 : public TetrahedronIntegrator {
   static constexpr double kSplitNonlinearity3 = 1;
   static constexpr int kMaxPartDepth3 = 20, kMaxParts3 = 20000;
   std::vector<MapPart3> parts_;
+  std::vector<std::pair<int, Piece3>> local_pieces_;  // the pieces of an image in local coordinates, kept
 
   const FluidSide3& fluid_;
   FluidSearch3& search_;

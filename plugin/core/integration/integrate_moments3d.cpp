@@ -94,8 +94,9 @@ double MomentIntegrator3::integrate(const ClippedImage3& image, int kf, const Pi
   counts_.points += 1;
   if (!(mo.volume > 0)) return mo.volume;
   double fv[kMaxFunctions], fg[3 * kMaxFunctions], sv[kMaxFunctions], sg[3 * kMaxFunctions];
-  integrand_.fluid.evaluate_affine(kf, integrand_.fluid.to_reference(kf, mo.centroid), fv, fg);
-  integrand_.multiplier.evaluate_affine(mt.k, mt.affine_reference(mo.centroid), sv, sg);
+  // the centroid relative to image.origin, as the piece
+  integrand_.fluid.evaluate_affine(kf, integrand_.fluid.to_reference(kf, mo.centroid, image.origin), fv, fg);
+  integrand_.multiplier.evaluate_affine(mt.k, mt.affine_reference(mo.centroid, image.origin), sv, sg);
   const double(&j)[3][3] = mt.affine_value.jac;
   const double det = mt.affine_det, mass = integrand_.c2 / det, stiff = integrand_.c1 * mo.volume / det;
   // per multiplier function: its gradient in y, J^-T grad_s psi (J^-T = cofactor matrix / det), times 2^e

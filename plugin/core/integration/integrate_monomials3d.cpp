@@ -29,7 +29,7 @@ double MonomialIntegrator3::integrate(const ClippedImage3& image, int kf, const 
   // The rule of degree d + 1 on the piece's tetrahedra, in the fluid element's reference coordinates.
   const auto& rule = tetrahedron_rule(fluid.moment_degree());
   Point3 eta_corner[Piece3::kMaxVertices];
-  for (int v = 0; v < piece.n; ++v) eta_corner[v] = fluid.to_reference(kf, piece.v[v]);
+  for (int v = 0; v < piece.n; ++v) eta_corner[v] = fluid.to_reference(kf, piece.v[v], image.origin);
   int n = 0;
   double volume = 0;
   piece.for_each_tetrahedron_index([&](int i0, int i1, int i2, int i3) {
@@ -51,8 +51,8 @@ double MonomialIntegrator3::integrate(const ClippedImage3& image, int kf, const 
   fluid.integrate_moments(kf, moment_.data(), first_.data(), gradient_sum_.data());
   // The multiplier at the centroid, and q_i = (grad_y psi_i . e_k)_k with grad_y psi = (dX/ds)^-T grad_s psi.
   const Point3 eta_c{moment_[1] / moment_[0], moment_[2] / moment_[0], moment_[3] / moment_[0]};
-  multiplier.evaluate_affine(mt.k, mt.affine_reference(fluid.from_reference(kf, eta_c)), value_.data(),
-                             gradient_.data());
+  const Point3 centroid = fluid.from_reference(kf, eta_c, image.origin);  // relative to image.origin
+  multiplier.evaluate_affine(mt.k, mt.affine_reference(centroid, image.origin), value_.data(), gradient_.data());
   const double(&j)[3][3] = mt.affine_value.jac;
   const double det = mt.affine_det, mass = integrand_.c2 / det, stiff = integrand_.c1 / det;
   const Point3 e[3] = {fluid.edge(kf, 0), fluid.edge(kf, 1), fluid.edge(kf, 2)};

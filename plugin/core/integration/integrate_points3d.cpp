@@ -68,7 +68,7 @@ double PointIntegrator3::gather(const ClippedImage3& image, int kf, const Piece3
   Point3 xi_corner[Piece3::kMaxVertices];
   MapValue3 mv;
   for (int v = 0; v < piece.n; ++v)
-    xi_corner[v] = mt.affine ? mt.affine_reference(piece.v[v]) : pull_back(mt, piece.v[v], image.guess(piece.v[v]), mv);
+    xi_corner[v] = mt.affine ? image.guess(piece.v[v]) : pull_back(mt, piece.v[v], image.guess(piece.v[v]), mv);
   clear_points();
   double volume = 0;
   piece.for_each_tetrahedron_index([&](int i0, int i1, int i2, int i3) {
@@ -88,7 +88,7 @@ double PointIntegrator3::gather(const ClippedImage3& image, int kf, const Piece3
         for (int a = 0; a < 3; ++a)
           for (int b = 0; b < 3; ++b) jac[3 * a + b] = mv.jac[a][b];
       }
-      eta_.push_back(integrand_.fluid.to_reference(kf, y));
+      eta_.push_back(integrand_.fluid.to_reference(kf, y, image.origin));  // y relative to it
       xi_.push_back(xi);
       weight_.push_back(vol * rp.weight / det);
     }

@@ -4,7 +4,7 @@
 namespace dlmfsi {
 
 Point3 ClippedImage3::guess(Point3 y) const {
-  if (!sub_xi) return tetrahedron.affine_reference(y);
+  if (!sub_xi) return tetrahedron.affine_reference(y, origin);
   // y = y0 + [e1 e2 e3] l: l by Cramer's rule, then xi = xi0 + sum_i l_i (xi_i - xi0)
   const Point3 e1 = sub_y[1] - sub_y[0], e2 = sub_y[2] - sub_y[0], e3 = sub_y[3] - sub_y[0], r = y - sub_y[0];
   const double det = dot(e1, cross(e2, e3));

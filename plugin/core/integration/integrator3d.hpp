@@ -25,7 +25,8 @@ struct CouplingReport;
 using Integrand3 = IntegrandOf<Basis3, PolynomialBasis3>;
 
 // The straight image of a solid tetrahedron, or of one of the sub-tetrahedra of a curved one, clipped
-// against the fluid: its pieces are integrated in fluid coordinates.
+// against the fluid: its pieces are integrated in fluid coordinates relative to origin, y_local = y - origin
+// (0 except on affine tetrahedra far from it against their size, ExactMethod3; as ClippedImage in 2D).
 struct ClippedImage3 {
   const MappedTet& tetrahedron;
   int degree;  // of the rule on a piece: exact for the product where the map is affine
@@ -33,7 +34,8 @@ struct ClippedImage3 {
   // first guess (null for the whole image: MappedTet::affine_reference).
   const Point3* sub_xi = nullptr;
   const Point3* sub_y = nullptr;
-  // Newton's first guess for the reference point of y.
+  Point3 origin = {};  // nonzero only on affine tetrahedra (Newton's pull-back works in absolute coordinates)
+  // Newton's first guess for the reference point of y_local (the pull-back itself on an affine tetrahedron).
   Point3 guess(Point3 y) const;
 };
 

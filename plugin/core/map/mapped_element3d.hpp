@@ -32,6 +32,14 @@ class MappedTet : public TetrahedronMap {
     return {m[0][0] * d.x + m[0][1] * d.y + m[0][2] * d.z, m[1][0] * d.x + m[1][1] * d.y + m[1][2] * d.z,
             m[2][0] * d.x + m[2][1] * d.y + m[2][2] * d.z};
   }
+  // The same for y given relative to origin (y_local = y - origin), image[0] translated exactly by -origin
+  // (the caller's condition). Origin 0 gives affine_reference(y).
+  Point3 affine_reference(Point3 y_local, Point3 origin) const {
+    const Point3 d = y_local - (image[0] - origin);
+    const double(&m)[3][3] = image_inv_;
+    return {m[0][0] * d.x + m[0][1] * d.y + m[0][2] * d.z, m[1][0] * d.x + m[1][1] * d.y + m[1][2] * d.z,
+            m[2][0] * d.x + m[2][1] * d.y + m[2][2] * d.z};
+  }
 
  private:
   void classify();

@@ -30,6 +30,8 @@ struct Tetrahedra {
     c[i] = p;
     return orient3d(c[0], c[1], c[2], c[3]);
   }
+  // out = t - o when exact (translate_exactly in clip3d.hpp), for the search's pieces in local coordinates.
+  static bool translate(const Point3 t[4], Point3 o, Point3 out[4]) { return translate_exactly(t, 4, o, out); }
   using Faces = TetFaces;
   static Piece3 clip(const Point3 t[4], const TetFaces& faces, const Point3 k[4], unsigned& beyond) {
     return dlmfsi::clip(t, faces, k, beyond);
