@@ -297,6 +297,7 @@ static void Load_Init() {
   dlmfsi_register_convect();
   dlmfsi_register_matrix_sort();
   dlmfsi_register_patch_matrix();
+  dlmfsi_register_solid_law();
 }
 
 LOADFUNC(Load_Init)

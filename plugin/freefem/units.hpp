@@ -13,6 +13,7 @@ void dlmfsi_register_supermesh();     // supermesh.cpp: dlmfsisupermesh
 void dlmfsi_register_convect();       // convect.cpp: dlmfsiconvect
 void dlmfsi_register_matrix_sort();   // matrix_sort.cpp: dlmfsisort
 void dlmfsi_register_patch_matrix();  // patch_matrix.cpp: dlmfsipatch
+void dlmfsi_register_solid_law();     // solid_law.cpp: dlmfsilaw, dlmfsilawrhs
 
 // plugin dlmfsi_mumps
 void dlmfsi_register_share_sum();  // share_sum.cpp: dlmfsisum

@@ -19,6 +19,7 @@ FOLDERS = {
     "sparse": ["parallel"],
     "mesh": ["geometry", "parallel"],
     "fe": ["mesh", "geometry", "parallel"],
+    "solid": ["fe", "mesh", "sparse", "geometry", "parallel"],
     "map": ["fe", "mesh", "geometry", "parallel"],
     "sides": ["map", "fe", "mesh", "sparse", "geometry", "parallel"],
     "integration": ["sides", "map", "fe", "mesh", "sparse", "geometry", "parallel"],
