@@ -142,10 +142,24 @@ inline std::vector<int> twin_functions(const std::vector<double>& coefficients, 
   return twin;
 }
 
+// Do element k's fitted functions add up to 1 (the constant function's degrees of freedom all 1, as for
+// Lagrange elements)? Monomial 0 is the constant; the coefficients of the n functions, nm each, from c.
+inline bool partition_of_unity(const double* c, int n, int nm) {
+  for (int m = 0; m < nm; ++m) {
+    double sum = 0;
+    for (int i = 0; i < n; ++i) sum += c[static_cast<std::size_t>(i) * nm + m];
+    if (std::fabs(sum - (m == 0 ? 1 : 0)) > 1e-10) return false;
+  }
+  return true;
+}
+
 // A field's polynomials on the elements [first, last): out[k * stride + offset + m] = the coefficient of
 // monomial m, on element k, of the sum over the fitted functions f of values[global dof of f] * (function
 // f) (Fit: PolynomialBasis or PolynomialBasis3 of nm monomials, fitted on space), summed from zero in the
-// functions' order.
+// functions' order. Where the functions add up to 1 the sum is taken relative to the first function's value
+// v0, sum_f (v_f - v0) f + v0 (the non-constant coefficients without the v0 sum_f c_f = 0 they would carry):
+// a map of an element of size h at distance R from 0 then has non-constant coefficients to relative
+// precision eps instead of eps R / h (v_f - v0 is exact for values within a factor 2 of each other).
 template <int D, class Fit>
 void field_monomials(const BasisOf<D>& space, const double* values, const Fit& fit, int nm, int first, int last,
                      double* out, std::size_t offset, std::size_t stride) {
@@ -165,8 +179,18 @@ void field_monomials(const BasisOf<D>& space, const double* values, const Fit& f
     else
       space.dofs(k, asked.data());
     const double* c = fit.coefficients(k);
-    // the first term added to zero (+ 0.0: a -0 term gives +0, as a sum from zero does)
     const double value = values[dofs[local_dof[0]]];
+    if (partition_of_unity(c, static_cast<int>(local_dof.size()), nm)) {
+      std::fill(o, o + nm, 0.0);
+      for (std::size_t i = 1; i < local_dof.size(); ++i) {
+        const double v = values[dofs[local_dof[i]]] - value;
+        const double* ci = c + i * nm;
+        for (int m = 0; m < nm; ++m) o[m] += v * ci[m];
+      }
+      o[0] += value;
+      continue;
+    }
+    // the first term added to zero (+ 0.0: a -0 term gives +0, as a sum from zero does)
     for (int m = 0; m < nm; ++m) o[m] = value * c[m] + 0.0;
     for (std::size_t i = 1; i < local_dof.size(); ++i) {
       c += nm;

@@ -349,7 +349,7 @@ double CurvedMethod::integrate_piece(const MappedTriangle& mt, int kf, LocalBloc
       for (int j = 0; i + j <= D; ++j, ++a) weight += row[a] * moments_[static_cast<size_t>(i) * (D + 1) + j];
     const Point xi{low.x + hx * (padua_u_[point] + 1), low.y + hy * (padua_v_[point] + 1)};
     Point x, d1, d2;
-    mt.polynomial(xi, x, d1, d2);
+    mt.displacement(xi, x, d1, d2);  // x = X(xi) - origin: the fluid basis is evaluated at the local point
     MapValue value;
     mt.set_jacobian(d1, d2, value);
     area += weight * cross(d1, d2);
@@ -359,13 +359,13 @@ double CurvedMethod::integrate_piece(const MappedTriangle& mt, int kf, LocalBloc
     rule_jacobian_[point] = {value.jac[0][0], value.jac[0][1], value.jac[1][0], value.jac[1][1]};
   }
   if (batch_) {
-    batch_->integrate_points(mt, kf, count, rule_y_.data(), rule_xi_.data(), rule_weight_.data(),
+    batch_->integrate_points(mt, kf, count, rule_y_.data(), mt.origin(), rule_xi_.data(), rule_weight_.data(),
                              rule_jacobian_.data(), block);
   } else {
     for (int point = 0; point < count; ++point) {
       const std::array<double, 4>& j = rule_jacobian_[point];
       const double jac[2][2] = {{j[0], j[1]}, {j[2], j[3]}};
-      points_.add_point(kf, rule_y_[point], mt.k, rule_xi_[point], rule_weight_[point], jac, block);
+      points_.add_point(kf, rule_y_[point], mt.origin(), mt.k, rule_xi_[point], rule_weight_[point], jac, block);
     }
   }
   return area;

@@ -91,12 +91,12 @@ void BatchIntegrator::integrate(const ClippedImage& image, int kf, const Piece& 
   add_gathered(image.triangle, kf, gather(image, kf, piece), block);
 }
 
-void BatchIntegrator::integrate_points(const MappedTriangle& mt, int kf, size_t n, const Point* y, const Point* xi,
-                                       const double* weight, const std::array<double, 4>* jacobian,
-                                       LocalBlock& block) {
+void BatchIntegrator::integrate_points(const MappedTriangle& mt, int kf, size_t n, const Point* y, Point origin,
+                                       const Point* xi, const double* weight,
+                                       const std::array<double, 4>* jacobian, LocalBlock& block) {
   reserve(n);
   for (size_t q = 0; q < n; ++q) {
-    eta_[q] = integrand_.fluid.to_reference(kf, y[q]);
+    eta_[q] = integrand_.fluid.to_reference(kf, y[q], origin);
     xi_[q] = xi[q];
     weight_[q] = weight[q];
     jacobian_[q] = jacobian[q];

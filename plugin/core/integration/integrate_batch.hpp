@@ -27,9 +27,10 @@ class BatchIntegrator : public PieceIntegrator {
   BatchIntegrator(const Integrand& integrand, CouplingReport& counts);
   void integrate(const ClippedImage& image, int kf, const Piece& piece, LocalBlock& block) override;
   // The same sums over n given points of the (not affine) solid triangle mt in fluid element kf (entered in
-  // the block): y the points, xi their reference points in mt, weight their weights (ds), jacobian dX/ds
-  // there as (jac[0][0], jac[0][1], jac[1][0], jac[1][1]). The curved method's rules come through this.
-  void integrate_points(const MappedTriangle& mt, int kf, size_t n, const Point* y, const Point* xi,
+  // the block): y the points relative to origin (y - origin, kf's corners translated by -origin as the
+  // caller's geometry did), xi their reference points in mt, weight their weights (ds), jacobian dX/ds there
+  // as (jac[0][0], jac[0][1], jac[1][0], jac[1][1]). The curved method's rules come through this.
+  void integrate_points(const MappedTriangle& mt, int kf, size_t n, const Point* y, Point origin, const Point* xi,
                         const double* weight, const std::array<double, 4>* jacobian, LocalBlock& block);
 
  private:

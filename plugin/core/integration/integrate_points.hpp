@@ -24,6 +24,12 @@ class PointIntegrator : public PieceIntegrator {
   void add_point(int kf, Point y, int ks, Point xi, double ds, const double jac[2][2], LocalBlock& block) {
     add_reference_point(kf, integrand_.fluid.to_reference(kf, y), ks, xi, ds, jac, block);
   }
+  // The same with y given relative to origin (y_local = y - origin), fluid element kf's corners translated by
+  // -origin as the caller's geometry did (AffineElementMaps::to_reference).
+  void add_point(int kf, Point y_local, Point origin, int ks, Point xi, double ds, const double jac[2][2],
+                 LocalBlock& block) {
+    add_reference_point(kf, integrand_.fluid.to_reference(kf, y_local, origin), ks, xi, ds, jac, block);
+  }
 
  private:
   // The same with eta, y's reference point in fluid element kf.

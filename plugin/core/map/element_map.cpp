@@ -39,14 +39,18 @@ void TriangleMap::fit(const Mesh& solid_mesh, const SolidMap& map, int kk) {
       vx[p] = x.x;
       vy[p] = x.y;
     }
+    // relative to the first lattice point's value (V^-1's rows add up to e_0, constants being fitted exactly),
+    // so that the non-constant coefficients keep the digits of the triangle's size
     const auto& inv = vandermonde_inverse(degree_);
     for (int m = 0; m < n; ++m) {
       cx[m] = cy[m] = 0;
-      for (int p = 0; p < n; ++p) {
-        cx[m] += inv[m * n + p] * vx[p];
-        cy[m] += inv[m * n + p] * vy[p];
+      for (int p = 1; p < n; ++p) {
+        cx[m] += inv[m * n + p] * (vx[p] - vx[0]);
+        cy[m] += inv[m * n + p] * (vy[p] - vy[0]);
       }
     }
+    cx[0] += vx[0];
+    cy[0] += vy[0];
   }
   for (int m = 0; m < n; ++m)
     if (!std::isfinite(cx[m]) || !std::isfinite(cy[m])) throw Error("the map is NaN or Inf in " + name());

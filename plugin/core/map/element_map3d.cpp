@@ -85,12 +85,16 @@ void TetrahedronMap::fit(const Mesh3& solid_mesh, const SolidMap3& map, int kk) 
         values[n + p] = x.y;
         values[2 * n + p] = x.z;
       }
+      // relative to the first lattice point's value (V^-1's rows add up to e_0), as in 2D
       const auto& inv = vandermonde_inverse3(degree_);
-      for (int a = 0; a < 3; ++a)
+      for (int a = 0; a < 3; ++a) {
+        const double v0 = values[a * n];
         for (int m = 0; m < n; ++m) {
           c_[a][m] = 0;
-          for (int p = 0; p < n; ++p) c_[a][m] += inv[static_cast<size_t>(m) * n + p] * values[a * n + p];
+          for (int p = 1; p < n; ++p) c_[a][m] += inv[static_cast<size_t>(m) * n + p] * (values[a * n + p] - v0);
         }
+        c_[a][0] += v0;
+      }
     }
     for (int a = 0; a < 3; ++a)
       for (int m = 0; m < n; ++m)
