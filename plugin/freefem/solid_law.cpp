@@ -1,6 +1,6 @@
 // The solid's elastic law assembled in the plugin (edp/lib/solid.idp's SOLIDRELINEARIZE with the plugin):
 //
-//   matrix K = dlmfsilaw(Rh, [XL, YL], law="svk", lambda=l, mu=m, components=[2, 3]);
+//   matrix K = dlmfsilaw(Rh, [XL, YL], law="svk", lambda=l, mu=m, components=[2, 3]);   // [, plus=A]
 //   dlmfsilawrhs(Rh, [XL, YL], r, law="svk", lambda=l, mu=m, components=[2, 3]);   // r: real[int]
 //
 // K_ab = int_Ths DP(Fl)[Grad phi_b] : Grad phi_a and r_a = int_Ths (DP(Fl)[Fl] - P(Fl)) : Grad phi_a
@@ -9,7 +9,8 @@
 // Rh.ndof). law= listing,
 // svk or nh (solid/law.hpp); lambda= and mu= required. The rule is int2d's: qft= a FreeFEM rule, or
 // qforder=n FreeFEM's rule of degree n - 1, else qf5pT (the default of int2d), so that K and r are the varf's
-// of the same integrand to round-off. [XL, YL]: FE functions on Rh's mesh.
+// of the same integrand to round-off. [XL, YL]: FE functions on Rh's mesh. plus=A (Rh.ndof x Rh.ndof): the
+// matrix returned is K + A (one sparse sum in the plugin, for a constant part assembled once).
 #include "ff++.hpp"
 
 #include <climits>
@@ -20,6 +21,7 @@
 
 #include "adapter.hpp"
 #include "errors.hpp"
+#include "matrix_triplets.hpp"
 #include "solid/law_assembly.hpp"
 #include "space_basis.hpp"
 #include "units.hpp"
@@ -108,7 +110,7 @@ LawCache& cache() {
 // The arguments of both functions: the space, the map, (rhs: the output vector) and the named options.
 class LawArgs {
  public:
-  enum { kLaw, kLambda, kMu, kComponents, kQft, kQforder, kCount };
+  enum { kLaw, kLambda, kMu, kComponents, kQft, kQforder, kPlus, kCount };
   Expression space, map_x, map_y;
 
   LawArgs(const basicAC_F0& args, const char* name) : name_(name) {
@@ -117,7 +119,8 @@ class LawArgs {
                                             {"mu", &typeid(double)},
                                             {"components", &typeid(KN_<long>)},
                                             {"qft", &typeid(const Fem2D::QuadratureFormular*)},
-                                            {"qforder", &typeid(long)}};
+                                            {"qforder", &typeid(long)},
+                                            {"plus", &typeid(Matrice_Creuse<double>*)}};
     if (args.find("components").left() == atype<E_Array>()) np[kComponents].type = &typeid(E_Array);
     args.SetNameParam(kCount, np, nargs_);
     if (const E_Array* a = dynamic_cast<const E_Array*>(nargs_[kComponents])) {
@@ -166,6 +169,17 @@ class LawArgs {
   }
 
   const char* name() const { return name_; }
+  // plus=A: A's entries (A must be n x n), or null when not given.
+  const std::vector<dlmfsi::Triplet>* plus(Stack stack, int n) const {
+    if (!nargs_[kPlus]) return nullptr;
+    Matrice_Creuse<double>* a = GetAny<Matrice_Creuse<double>*>((*nargs_[kPlus])(stack));
+    if (!a || a->N() != n || a->M() != n)
+      throw dlmfsi::Error("plus=: expected a " + std::to_string(n) + " x " + std::to_string(n) + " matrix (got " +
+                          (a ? std::to_string(a->N()) + " x " + std::to_string(a->M()) : std::string("none")) + ")");
+    thread_local std::vector<dlmfsi::Triplet> entries;
+    entries = dlmfsi_ff::matrix_triplets(a, "plus=");
+    return &entries;
+  }
 
  private:
   std::vector<int> components(Stack stack, int n) const {
@@ -230,7 +244,7 @@ class LawMatrixOp : public E_F0mps {
     return law_call(args_.name(), [&]() -> AnyType {
       const FESpace* vh = nullptr;
       const dlmfsi::LawProblem p = args_.problem(stack, vh);
-      const dlmfsi::CsrMatrix& k = cache().assembly.matrix(p);
+      const dlmfsi::CsrMatrix& k = cache().assembly.matrix(p, args_.plus(stack, vh->NbOfDF));
       MatriceMorse<double>* pa = new MatriceMorse<double>(k.rows, k.cols, 0, 0);
       pa->set(k.rows, k.cols, 0, k.value.size(), const_cast<int*>(k.start.data()), const_cast<int*>(k.column.data()),
               const_cast<double*>(k.value.data()), 0, 1);

@@ -93,8 +93,17 @@ Gradient2 map_gradient(const LawProblem& p, int k, int q) {
 
 }  // namespace
 
-const CsrMatrix& LawAssembly::matrix(const LawProblem& p) {
+const CsrMatrix& LawAssembly::matrix(const LawProblem& p, const std::vector<Triplet>* plus) {
   check(p);
+  const int n = p.position->dof_count();
+  triplets_[1].clear();
+  if (plus) {
+    for (const Triplet& e : *plus)
+      if (e.row < 0 || e.row >= n || e.col < 0 || e.col >= n)
+        throw Error("the matrix added (plus=) has an entry (" + std::to_string(e.row) + ", " + std::to_string(e.col) +
+                    ") outside " + std::to_string(n) + " x " + std::to_string(n));
+    triplets_[1] = *plus;
+  }
   const RuleGradients& pos = *p.position;
   const int nf = pos.functions(), np = pos.points();
   std::vector<Triplet>& triplets = triplets_[0];
@@ -129,7 +138,7 @@ const CsrMatrix& LawAssembly::matrix(const LawProblem& p) {
     for (int a = 0; a < nf; ++a)
       for (int b = 0; b < nf; ++b) triplets.emplace_back(dofs[a], dofs[b], ke[static_cast<size_t>(a) * nf + b]);
   }
-  return builder_.build(pos.dof_count(), pos.dof_count(), triplets_);
+  return builder_.build(n, n, triplets_);
 }
 
 void LawAssembly::rhs(const LawProblem& p, std::vector<double>& out) const {

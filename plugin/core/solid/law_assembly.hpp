@@ -62,15 +62,16 @@ struct LawProblem {
 // Keeps the matrix's buffers from call to call (a time loop takes no fresh memory).
 class LawAssembly {
  public:
-  // K (dof_count x dof_count of the position's space). Errors: inconsistent inputs; nh with J <= 0 at a
-  // rule point (naming the element).
-  const CsrMatrix& matrix(const LawProblem& p);
+  // K (dof_count x dof_count of the position's space), plus the triplets of plus when given (entries on
+  // the same place summed, K's first). Errors: inconsistent inputs (plus out of range); nh with J <= 0 at
+  // a rule point (naming the element).
+  const CsrMatrix& matrix(const LawProblem& p, const std::vector<Triplet>* plus = nullptr);
   // r (dof_count entries, set; zero off the position's dofs).
   void rhs(const LawProblem& p, std::vector<double>& out) const;
 
  private:
   CsrBuilder builder_;
-  std::vector<std::vector<Triplet>> triplets_ = std::vector<std::vector<Triplet>>(1);
+  std::vector<std::vector<Triplet>> triplets_ = std::vector<std::vector<Triplet>>(2);  // K's, plus's
 };
 
 }  // namespace dlmfsi
