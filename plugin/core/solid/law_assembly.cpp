@@ -138,7 +138,38 @@ const CsrMatrix& LawAssembly::matrix(const LawProblem& p, const std::vector<Trip
     for (int a = 0; a < nf; ++a)
       for (int b = 0; b < nf; ++b) triplets.emplace_back(dofs[a], dofs[b], ke[static_cast<size_t>(a) * nf + b]);
   }
-  return builder_.build(n, n, triplets_);
+  return sum(n);
+}
+
+const CsrMatrix& LawAssembly::sum(int n) {
+  size_t count = 0;
+  for (const auto& part : triplets_) count += part.size();
+  bool same = matrix_.rows == n && keys_.size() == count;
+  for (size_t t = 0, e = 0; same && e < triplets_.size(); ++e)
+    for (const Triplet& x : triplets_[e])
+      if (keys_[t++] != static_cast<long long>(x.row) * n + x.col) {
+        same = false;
+        break;
+      }
+  if (!same) {
+    matrix_ = compress(n, n, triplets_);
+    keys_.clear();
+    where_.clear();
+    for (const auto& part : triplets_)
+      for (const Triplet& x : part) {
+        keys_.push_back(static_cast<long long>(x.row) * n + x.col);
+        const auto first = matrix_.column.begin() + matrix_.start[x.row];
+        const auto last = matrix_.column.begin() + matrix_.start[x.row + 1];
+        where_.push_back(static_cast<int>(std::lower_bound(first, last, x.col) - matrix_.column.begin()));
+      }
+    return matrix_;
+  }
+  std::fill(matrix_.value.begin(), matrix_.value.end(), 0.0);
+  double* value = matrix_.value.data();
+  const int* where = where_.data();
+  for (const auto& part : triplets_)
+    for (const Triplet& x : part) value[*where++] += x.value;
+  return matrix_;
 }
 
 void LawAssembly::rhs(const LawProblem& p, std::vector<double>& out) const {

@@ -13,7 +13,7 @@
 #include "fe/rules.hpp"
 #include "solid/law.hpp"
 #include "sparse/csr_matrix.hpp"
-#include "sparse/sparse.hpp"
+#include "sparse/sparse.hpp"  // compress
 
 namespace dlmfsi {
 
@@ -70,8 +70,14 @@ class LawAssembly {
   void rhs(const LawProblem& p, std::vector<double>& out) const;
 
  private:
-  CsrBuilder builder_;
+  // The matrix of the triplets (K's, then plus's): compressed on a new pattern, else summed in place
+  // through where_ (the entry of each triplet), in the triplets' order (compress's sums, bit for bit).
+  const CsrMatrix& sum(int n);
+
   std::vector<std::vector<Triplet>> triplets_ = std::vector<std::vector<Triplet>>(2);  // K's, plus's
+  CsrMatrix matrix_;
+  std::vector<long long> keys_;  // the last call's triplets' row * n + col, in order
+  std::vector<int> where_;       // their entries in matrix_
 };
 
 }  // namespace dlmfsi
