@@ -10,7 +10,9 @@
 // svk or nh (solid/law.hpp); lambda= and mu= required. The rule is int2d's: qft= a FreeFEM rule, or
 // qforder=n FreeFEM's rule of degree n - 1, else qf5pT (the default of int2d), so that K and r are the varf's
 // of the same integrand to round-off. [XL, YL]: FE functions on Rh's mesh. plus=A (Rh.ndof x Rh.ndof): the
-// matrix returned is K + A (one sparse sum in the plugin, for a constant part assembled once).
+// matrix returned is K + A (one sparse sum in the plugin, for a constant part assembled once). part=[r, P]:
+// the share of process r of P, the solid triangles nt r / P .. nt (r + 1) / P - 1 (dlmfsi's rule; the shares
+// add up to the whole).
 #include "ff++.hpp"
 
 #include <climits>
@@ -22,6 +24,7 @@
 #include "adapter.hpp"
 #include "errors.hpp"
 #include "matrix_triplets.hpp"
+#include "parallel/shares.hpp"
 #include "solid/law_assembly.hpp"
 #include "space_basis.hpp"
 #include "units.hpp"
@@ -110,7 +113,7 @@ LawCache& cache() {
 // The arguments of both functions: the space, the map, (rhs: the output vector) and the named options.
 class LawArgs {
  public:
-  enum { kLaw, kLambda, kMu, kComponents, kQft, kQforder, kPlus, kCount };
+  enum { kLaw, kLambda, kMu, kComponents, kQft, kQforder, kPlus, kPart, kCount };
   Expression space, map_x, map_y;
 
   LawArgs(const basicAC_F0& args, const char* name) : name_(name) {
@@ -120,13 +123,16 @@ class LawArgs {
                                             {"components", &typeid(KN_<long>)},
                                             {"qft", &typeid(const Fem2D::QuadratureFormular*)},
                                             {"qforder", &typeid(long)},
-                                            {"plus", &typeid(Matrice_Creuse<double>*)}};
-    if (args.find("components").left() == atype<E_Array>()) np[kComponents].type = &typeid(E_Array);
+                                            {"plus", &typeid(Matrice_Creuse<double>*)},
+                                            {"part", &typeid(KN_<long>)}};
+    for (int i : {int(kComponents), int(kPart)})
+      if (args.find(np[i].name).left() == atype<E_Array>()) np[i].type = &typeid(E_Array);
     args.SetNameParam(kCount, np, nargs_);
-    if (const E_Array* a = dynamic_cast<const E_Array*>(nargs_[kComponents])) {
-      for (int e = 0; e < a->size(); ++e) components_list_.push_back(to<long>((*a)[e]));
-      nargs_[kComponents] = 0;
-    }
+    for (int i : {int(kComponents), int(kPart)})
+      if (const E_Array* a = dynamic_cast<const E_Array*>(nargs_[i])) {
+        for (int e = 0; e < a->size(); ++e) (i == kPart ? part_list_ : components_list_).push_back(to<long>((*a)[e]));
+        nargs_[i] = 0;
+      }
     space = to<pfes*>(args[0]);
     const E_Array* xy = dynamic_cast<const E_Array*>(args[1].LeftValue());
     if (!xy || xy->size() != 2)
@@ -165,6 +171,7 @@ class LawArgs {
     p.y = {&gy, &(*py.first->x())[0]};
     p.rule = &c.rule(qf);
     p.areas = &c.element_areas(*vh);
+    share(stack, vh->Th.nt, p.first, p.last);
     return p;
   }
 
@@ -182,13 +189,30 @@ class LawArgs {
   }
 
  private:
-  std::vector<int> components(Stack stack, int n) const {
+  // The entries of the list option i (components=, part=), 64-bit; none when not given.
+  std::vector<long> integers(int i, const std::vector<Expression>& list, Stack stack) const {
     std::vector<long> given;
-    for (Expression e : components_list_) given.push_back(GetAny<long>((*e)(stack)));
-    if (nargs_[kComponents]) {
-      const KN_<long> v = GetAny<KN_<long> >((*nargs_[kComponents])(stack));
-      for (int i = 0; i < v.N(); ++i) given.push_back(v[i]);
+    for (Expression e : list) given.push_back(GetAny<long>((*e)(stack)));
+    if (nargs_[i]) {
+      const KN_<long> v = GetAny<KN_<long> >((*nargs_[i])(stack));
+      for (int k = 0; k < v.N(); ++k) given.push_back(v[k]);
     }
+    return given;
+  }
+  // part=[r, P]: the solid triangles nt r / P .. nt (r + 1) / P - 1 (dlmfsi's part= rule); else all.
+  void share(Stack stack, int nt, int& first, int& last) const {
+    if (!nargs_[kPart] && part_list_.empty()) return;
+    const std::vector<long> part = integers(kPart, part_list_, stack);
+    if (part.size() != 2 || part[1] < 1 || part[1] > INT_MAX || part[0] < 0 || part[0] >= part[1]) {
+      std::string text;
+      for (size_t i = 0; i < part.size(); ++i) text += (i ? ", " : "") + std::to_string(part[i]);
+      throw dlmfsi::Error("part=[" + text + "]: expected [rank, size] with 0 <= rank < size");
+    }
+    first = static_cast<int>(dlmfsi::share_first(nt, static_cast<int>(part[0]), static_cast<int>(part[1])));
+    last = static_cast<int>(dlmfsi::share_first(nt, static_cast<int>(part[0]) + 1, static_cast<int>(part[1])));
+  }
+  std::vector<int> components(Stack stack, int n) const {
+    std::vector<long> given = integers(kComponents, components_list_, stack);
     if (!nargs_[kComponents] && components_list_.empty()) given = {0, 1};
     std::string text;
     for (size_t i = 0; i < given.size(); ++i) text += (i ? ", " : "") + std::to_string(given[i]);
@@ -217,7 +241,7 @@ class LawArgs {
 
   const char* name_;
   Expression nargs_[kCount] = {};
-  std::vector<Expression> components_list_;
+  std::vector<Expression> components_list_, part_list_;
 };
 
 // A body's error as FreeFEM's, its message prefixed with the function's name.

@@ -63,7 +63,12 @@ void check(const LawProblem& p) {
   }
   if (p.position->points() != static_cast<int>(p.rule->size())) throw Error("the position is tabulated on another rule");
   if (static_cast<int>(p.areas->size()) != n) throw Error("one area per solid triangle expected");
+  if (p.first < 0 || p.first > n || (p.last >= 0 && (p.last < p.first || p.last > n)))
+    throw Error("the elements " + std::to_string(p.first) + " .. " + std::to_string(p.last) + " are not a range of the " +
+                std::to_string(n) + " solid triangles");
 }
+
+int last_element(const LawProblem& p) { return p.last < 0 ? p.position->elements() : p.last; }
 
 // Fl = Grad [XL, YL] at point q of element k, row by row.
 Gradient2 map_gradient(const LawProblem& p, int k, int q) {
@@ -108,10 +113,11 @@ const CsrMatrix& LawAssembly::matrix(const LawProblem& p, const std::vector<Trip
   const int nf = pos.functions(), np = pos.points();
   std::vector<Triplet>& triplets = triplets_[0];
   triplets.clear();
-  triplets.reserve(static_cast<size_t>(pos.elements()) * nf * nf);
+  const int last = last_element(p);
+  triplets.reserve(static_cast<size_t>(last - p.first) * nf * nf);
   std::vector<double> ke(static_cast<size_t>(nf) * nf), th(static_cast<size_t>(nf) * 4);
   double t[16];
-  for (int k = 0; k < pos.elements(); ++k) {
+  for (int k = p.first; k < last; ++k) {
     std::fill(ke.begin(), ke.end(), 0.0);
     for (int q = 0; q < np; ++q) {
       try {
@@ -177,7 +183,8 @@ void LawAssembly::rhs(const LawProblem& p, std::vector<double>& out) const {
   const RuleGradients& pos = *p.position;
   const int nf = pos.functions(), np = pos.points();
   out.assign(pos.dof_count(), 0.0);
-  for (int k = 0; k < pos.elements(); ++k) {
+  const int last = last_element(p);
+  for (int k = p.first; k < last; ++k) {
     const int* dofs = pos.dofs(k);
     for (int q = 0; q < np; ++q) {
       Gradient2 r{};

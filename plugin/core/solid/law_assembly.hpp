@@ -57,6 +57,9 @@ struct LawProblem {
   MapComponent x{}, y{};                    // XL, YL on the same mesh and rule
   const std::vector<RulePoint>* rule = nullptr;
   const std::vector<double>* areas = nullptr;  // |T| per element
+  // The elements first .. last - 1 only (a share of a distributed assembly; last < 0: to the end). The
+  // shares of a split add up to the whole matrix and right-hand side.
+  int first = 0, last = -1;
 };
 
 // Keeps the matrix's buffers from call to call (a time loop takes no fresh memory).
