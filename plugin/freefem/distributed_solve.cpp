@@ -5,9 +5,10 @@
 //   load "dlmfsi_mumps"
 //   real[int] x(n);
 //   int fresh = dlmfsisolve(A, b, x, id=0);   // A, b: this process's shares, global numbering
+//   dlmfsisolve(A, b, x, id=0, ordering="mumps");   // MUMPS's own pivot order instead of dlmfsi's (below)
 //   dlmfsisolve(A, b, x, id=0, kept=true);    // a solve with id 0's factorization; A is not read
 //   matrix S = dlmfsisum(A);                  // the shares summed, whole on every process (share_sum.cpp)
-//   real[int] s(12); dlmfsisolvestats(0, s);  // counts, times and memory of the kept factorization 0
+//   real[int] s(14); dlmfsisolvestats(0, s);  // counts, times and memory of the kept factorization 0
 //   dlmfsisolvefree(0);                       // releases it
 //
 // The matrix solved is A = sum over processes of their A (entries at one position add up, so a process
@@ -21,7 +22,8 @@
 // solution broadcast from it. The analysis (fill-reducing ordering, symbolic factorization) and the
 // numerical factorization are kept per id: the next call with an id reuses the factorization when no
 // process's share changed, and the analysis when no process's share changed pattern (the sparsity
-// pattern, entries in the same order); the processes agree on that collectively. The analysis is sequential,
+// pattern, entries in the same order); the processes agree on that collectively; a new pattern of the same size
+// keeps the last nested dissection (below) while its fill stays within 20 %. The analysis is sequential,
 // on the host (ICNTL(28) = 1), with METIS's nested dissection of the whole pattern as the pivot order
 // (fill_ordering.hpp, ICNTL(7) = 1; from 20,000 unknowns, when the build has libmetis-dev): Debian's parallel
 // MUMPS is built without METIS and Scotch (a parallel analysis, ICNTL(28) = 2, fails with -38), and its own
@@ -38,9 +40,7 @@
 // (input that does not fit, on any process, or a failure of the engine) is raised on every process with
 // the same message, after the processes have agreed, so each one's try/catch runs and none waits.
 // dlmfsilasterror() returns it in the catch block.
-#define OMPI_SKIP_MPICXX 1
-#define MPICH_SKIP_MPICXX 1
-#include <mpi.h>
+#include "solve_comm.hpp"
 
 #include <dmumps_c.h>
 
@@ -67,8 +67,10 @@
 namespace {
 
 constexpr long kMaxId = 1000;          // ids 0 .. kMaxId - 1
-constexpr int kStats = 13;             // entries of dlmfsisolvestats
+constexpr int kStats = 14;             // entries of dlmfsisolvestats
 constexpr int kMemoryRetries = 4;      // workspace estimate doubled at most this many times
+constexpr double kOrderFill = 1.2;     // a kept order is dropped once its factors grow beyond this factor
+constexpr long kOrderSkipMax = 64;
 
 // An input that does not fit (the message says which); raised on every process as a FreeFEM ExecError.
 struct Failure : std::runtime_error {
@@ -81,18 +83,13 @@ double cpu_seconds() {
   return t.tv_sec + 1e-9 * t.tv_nsec;
 }
 
-bool mpi_running() {
-  int on = 0, off = 0;
-  MPI_Initialized(&on);
-  MPI_Finalized(&off);
-  return on && !off;
-}
+bool mpi_running() { return dlmfsi_comm::running(); }
 
 // Wall and CPU time of one phase, added to the phase's totals.
 struct PhaseClock {
-  double wall0 = MPI_Wtime(), cpu0 = cpu_seconds();
+  double wall0 = dlmfsi_comm::wall_seconds(), cpu0 = cpu_seconds();
   void add_to(double& wall, double& cpu) const {
-    wall += MPI_Wtime() - wall0;
+    wall += dlmfsi_comm::wall_seconds() - wall0;
     cpu += cpu_seconds() - cpu0;
   }
 };
@@ -113,6 +110,24 @@ struct Kept {
   double factor_entries = 0;  // entries in the factors, all processes (INFOG(29))
   double delayed = 0;     // delayed pivots (INFOG(13)): how far threshold pivoting strayed from the ordering
   std::vector<MUMPS_INT> order;  // the host's pivot order given to MUMPS (PERM_IN), empty: MUMPS's choice
+  // A nested dissection is kept for the next analyses of the same size while the factors it gives stay within
+  // kOrderFill of those of the pattern it was computed on (estimated entries, INFOG(20)).
+  bool order_reused = false;     // the last analysis took the kept order
+  bool order_stale = false;      // the kept order filled too much: a new one at the next analysis
+  double order_entries = 0;      // estimated entries in the factors on the order's own pattern
+  long order_reuses = 0;         // analyses that reused a kept order (dlmfsisolvestats)
+  // After a kept order filled too much, the next order_skip analyses order afresh without trying it (1, 2, 4, ...
+  // up to kOrderSkipMax while it keeps failing; 0 again once it holds): a solid that moves a cell per step
+  // moves the coupling's rows across the dissection's separators (the falling disk's preconditioner: 1.4 to 2.1
+  // times the fill), a slow one does not.
+  long order_skip = 0, order_skip_next = 1;
+  // ordering="mumps": MUMPS's own choice at a fresh analysis (its order then kept from SYM_PERM), instead of
+  // dlmfsi's nested dissection. Sequential MUMPS orders by its own METIS or Scotch, and its order solves faster
+  // than the nested dissection given as PERM_IN (the falling disk's fluid block: 20.3e6 entries in the factors
+  // against 12.98e6, yet 35 CPU s of fluid solves against 42 s over 35 steps), while the nested dissection
+  // analyses the preconditioner of 44,580 unknowns in 0.6 s against 1.2 s (lib/solve.idp asks for each).
+  // Debian's parallel MUMPS has neither METIS nor Scotch: its own choice is PORD there.
+  bool mumps_order = false;
   double ordering = -1;   // the ordering MUMPS used (INFOG(7): 1 given, i.e. METIS's; 0 AMD, 2 AMF, 4 PORD, 6 QAMD)
 
   ~Kept() { terminate(); }
@@ -147,7 +162,7 @@ std::string engine_error(const DMUMPS_STRUC_C& m, const char* phase) {
     case -16: what = "the size is out of range"; break;
     default: what = "MUMPS error"; break;
   }
-  return "dlmfsisolve: " + what + " (parallel MUMPS, " + phase + ": INFOG(1)=" + std::to_string(code) +
+  return "dlmfsisolve: " + what + " (" + dlmfsi_comm::engine() + ", " + phase + ": INFOG(1)=" + std::to_string(code) +
          ", INFOG(2)=" + std::to_string(detail) + ")";
 }
 
@@ -159,8 +174,7 @@ std::string agree(const std::string& failure, long n, long id, bool solve_only) 
     int failed, solve_only;
     char message[400];
   };
-  int size = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  const int size = dlmfsi_comm::size();
   Report mine{};
   mine.n = n;
   mine.id = id;
@@ -168,10 +182,11 @@ std::string agree(const std::string& failure, long n, long id, bool solve_only) 
   mine.solve_only = solve_only ? 1 : 0;
   std::strncpy(mine.message, failure.c_str(), sizeof mine.message - 1);
   std::vector<Report> all(size);
-  MPI_Allgather(&mine, sizeof mine, MPI_BYTE, all.data(), sizeof mine, MPI_BYTE, MPI_COMM_WORLD);
+  dlmfsi_comm::allgather(&mine, sizeof mine, all.data());
   for (int r = 0; r < size; ++r)
     if (all[r].failed) {
       std::string m = all[r].message;
+      if (size == 1) return m;
       if (m.rfind("dlmfsisolve: ", 0) == 0) m.erase(0, 13);
       return "dlmfsisolve: on process " + std::to_string(r) + " of " + std::to_string(size) + ": " + m;
     }
@@ -228,15 +243,33 @@ std::string run(Kept& k, int job, const char* phase) {
 
 // The pivot order of the next analysis: METIS's nested dissection of the whole pattern, gathered on the host
 // (fill_ordering.hpp), given to MUMPS (ICNTL(7) = 1); MUMPS's automatic choice (ICNTL(7) = 7) in a build
-// without METIS, for small systems, or when METIS gives none. Collective; the same for any number of
-// processes (the same pattern).
+// without METIS, for small systems, when METIS gives none, and with ordering="mumps" (Kept::mumps_order),
+// whose order is then kept (keep_order). A matrix of the size of the last one ordered
+// (a new pattern of the same unknowns: the coupling of a solid that moved) takes the kept order instead, and
+// MUMPS only redoes the symbolic factorization, until the factors outgrow the order (kOrderFill, checked after
+// the analysis). Collective; the same for any number of processes (the same pattern).
 void choose_ordering(Kept& k, int rank) {
   static_assert(sizeof(MUMPS_INT) == sizeof(int), "32-bit MUMPS indices");
-  int size = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
-  long mine = static_cast<long>(k.rows.size()), total = 0;
-  MPI_Allreduce(&mine, &total, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
+  int reuse = rank == 0 && !k.order_stale && k.order_skip == 0 && static_cast<long>(k.order.size()) == k.n ? 1 : 0;
+  if (k.order_skip > 0) --k.order_skip;
+  dlmfsi_comm::broadcast(&reuse, 1);
+  k.order_reused = reuse != 0;
+  if (reuse) {
+    k.m.icntl[6] = 1;
+    k.m.perm_in = rank == 0 ? k.order.data() : nullptr;
+    return;
+  }
+  k.order_stale = false;
   k.order.clear();
+  int own = k.mumps_order ? 1 : 0;
+  dlmfsi_comm::broadcast(&own, 1);
+  if (own) {   // MUMPS's choice, kept after the analysis (keep_order)
+    k.m.icntl[6] = 7;
+    k.m.perm_in = nullptr;
+    return;
+  }
+  const int size = dlmfsi_comm::size();
+  const long mine = static_cast<long>(k.rows.size()), total = dlmfsi_comm::sum_over_processes(mine);
   int given = 0;
   if (dlmfsi_ff::have_nested_dissection() && k.n >= dlmfsi_ff::kMinNestedDissection && total <= INT_MAX) {
     // The host's arrays first: without the memory for them (or for METIS) the host says so and MUMPS orders,
@@ -251,14 +284,14 @@ void choose_ordering(Kept& k, int rank) {
         room = 0;
       }
     }
-    MPI_Bcast(&room, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    dlmfsi_comm::broadcast(&room, 1);
     if (room) {
       const int count = static_cast<int>(mine);
-      MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+      dlmfsi_comm::gather(count, counts.data());
       if (rank == 0)
         for (int r = 1; r < size; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
-      MPI_Gatherv(k.rows.data(), count, MPI_INT, rows.data(), counts.data(), offsets.data(), MPI_INT, 0, MPI_COMM_WORLD);
-      MPI_Gatherv(k.cols.data(), count, MPI_INT, cols.data(), counts.data(), offsets.data(), MPI_INT, 0, MPI_COMM_WORLD);
+      dlmfsi_comm::gather(k.rows.data(), count, rows.data(), counts.data(), offsets.data());
+      dlmfsi_comm::gather(k.cols.data(), count, cols.data(), counts.data(), offsets.data());
       if (rank == 0) {
         try {
           k.order = dlmfsi_ff::nested_dissection(k.n, rows, cols);
@@ -267,11 +300,18 @@ void choose_ordering(Kept& k, int rank) {
         }
       }
       given = k.order.empty() ? 0 : 1;
-      MPI_Bcast(&given, 1, MPI_INT, 0, MPI_COMM_WORLD);
+      dlmfsi_comm::broadcast(&given, 1);
     }
   }
   k.m.icntl[6] = given ? 1 : 7;
   k.m.perm_in = given && rank == 0 ? k.order.data() : nullptr;
+}
+
+// After a fresh analysis by MUMPS's own choice (ordering="mumps"): its pivot order, SYM_PERM on the host (the
+// position of each unknown, as PERM_IN), kept for the next patterns of the same size.
+void keep_order(Kept& k, int rank) {
+  if (!k.mumps_order || k.order_reused || rank != 0 || !k.m.sym_perm) return;
+  k.order.assign(k.m.sym_perm, k.m.sym_perm + k.n);
 }
 
 void set_controls(DMUMPS_STRUC_C& m) {
@@ -300,12 +340,27 @@ std::string factor_and_solve(Kept& k, bool analyse, bool factor, std::vector<dou
     k.m.jcn_loc = k.cols.data();
     k.m.a_loc = k.values.data();
     PhaseClock c;
-    choose_ordering(k, rank);
-    err = run(k, 1, "analysis");
+    for (;;) {   // twice at most: a kept order that fills too much is replaced at once
+      choose_ordering(k, rank);
+      err = run(k, 1, "analysis");
+      if (!err.empty()) break;
+      const double estimate = k.m.infog[19] >= 0 ? k.m.infog[19] : -1e6 * k.m.infog[19];   // INFOG(20)
+      keep_order(k, rank);
+      if (!k.order_reused) k.order_entries = estimate;
+      if (!k.order_reused) break;
+      if (estimate <= kOrderFill * k.order_entries) {
+        k.order_skip_next = 1;
+        break;
+      }
+      k.order_stale = true;
+      k.order_skip = k.order_skip_next;
+      k.order_skip_next = std::min(2 * k.order_skip_next, kOrderSkipMax);
+    }
     c.add_to(k.wall[0], k.cpu[0]);
     if (!err.empty()) return err;
     k.ordering = k.m.infog[6];
     ++k.count[0];
+    if (k.order_reused) ++k.order_reuses;
     k.analysed = true;
     factor = true;
   }
@@ -351,7 +406,7 @@ void solve_sum(Kept& k, bool analyse, bool factor, const KN_<double>& b, KN<doub
   const long n = k.n;
   std::vector<double> share(n), rhs(rank == 0 ? n : 0);
   for (long i = 0; i < n; ++i) share[i] = b[i];   // b may be a strided view
-  MPI_Reduce(share.data(), rank == 0 ? rhs.data() : nullptr, static_cast<int>(n), MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
+  dlmfsi_comm::sum_on_host(share.data(), rank == 0 ? rhs.data() : nullptr, static_cast<int>(n));
   const std::string err = factor_and_solve(k, analyse, factor, rhs, rank);
   if (!err.empty()) {
     k.terminate();   // the next call starts again from the analysis
@@ -359,13 +414,13 @@ void solve_sum(Kept& k, bool analyse, bool factor, const KN_<double>& b, KN<doub
   }
   x->resize(n);
   if (rank == 0) std::copy(rhs.begin(), rhs.end(), &(*x)[0]);
-  MPI_Bcast(&(*x)[0], static_cast<int>(n), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  dlmfsi_comm::broadcast(&(*x)[0], static_cast<int>(n));
 }
 
 class SolveOp : public E_F0mps {
  public:
   typedef long Result;
-  static const int n_name_param = 2;
+  static const int n_name_param = 3;
   static basicAC_F0::name_and_type name_param[n_name_param];
   Expression matrix, rhs, solution;
   Expression nargs[n_name_param];
@@ -383,7 +438,8 @@ class SolveOp : public E_F0mps {
   AnyType operator()(Stack stack) const;
 };
 
-basicAC_F0::name_and_type SolveOp::name_param[n_name_param] = {{"id", &typeid(long)}, {"kept", &typeid(bool)}};
+basicAC_F0::name_and_type SolveOp::name_param[n_name_param] = {
+    {"id", &typeid(long)}, {"kept", &typeid(bool)}, {"ordering", &typeid(string*)}};
 
 AnyType SolveOp::operator()(Stack stack) const {
   dlmfsi_ff::last_error().clear();
@@ -391,11 +447,11 @@ AnyType SolveOp::operator()(Stack stack) const {
     dlmfsi_ff::fail("dlmfsisolve: MPI is not running: run the script with FreeFem++-mpi (NP=2 bin/ff script.edp)");
   const long id = nargs[0] ? GetAny<long>((*nargs[0])(stack)) : 0L;
   const bool solve_only = nargs[1] ? GetAny<bool>((*nargs[1])(stack)) : false;
+  const std::string ordering = nargs[2] ? *GetAny<string*>((*nargs[2])(stack)) : "dissection";
   Matrice_Creuse<double>* a = GetAny<Matrice_Creuse<double>*>((*matrix)(stack));
   const KN_<double> b = GetAny<KN_<double> >((*rhs)(stack));
   KN<double>* x = GetAny<KN<double>*>((*solution)(stack));
-  int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  const int rank = dlmfsi_comm::rank();
 
   // This process's share and its checks; then all processes agree before anything collective.
   std::string failure;
@@ -405,6 +461,8 @@ AnyType SolveOp::operator()(Stack stack) const {
   try {
     if (id < 0 || id >= kMaxId) throw Failure("id=" + std::to_string(id) + " out of range (0 to " + std::to_string(kMaxId - 1) + ")");
     if (!x) throw Failure("the solution array is not defined");
+    if (ordering != "dissection" && ordering != "mumps")
+      throw Failure("ordering=\"" + ordering + "\": expected \"dissection\" (dlmfsi's nested dissection) or \"mumps\"");
     if (solve_only) {
       auto it = kept().find(id);
       if (it == kept().end() || !it->second->factored)
@@ -438,8 +496,7 @@ AnyType SolveOp::operator()(Stack stack) const {
     change = 2;
   else if (values != k.values)
     change = 1;
-  int agreed = 0;
-  MPI_Allreduce(&change, &agreed, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  const int agreed = dlmfsi_comm::max_over_processes(change);
   if (change) {
     k.rows.swap(rows);
     k.cols.swap(cols);
@@ -449,11 +506,15 @@ AnyType SolveOp::operator()(Stack stack) const {
     k.m = DMUMPS_STRUC_C{};
     k.m.par = 1;   // the host works too
     k.m.sym = 0;
-    k.m.comm_fortran = static_cast<MUMPS_INT>(MPI_Comm_c2f(MPI_COMM_WORLD));
+    k.m.comm_fortran = static_cast<MUMPS_INT>(dlmfsi_comm::fortran_world());
     const std::string err = run(k, -1, "initialization");
     if (!err.empty()) dlmfsi_ff::fail(err);
     k.live = true;
     set_controls(k.m);
+  }
+  if (k.mumps_order != (ordering == "mumps")) {   // another ordering asked for: the kept order is not it
+    k.mumps_order = ordering == "mumps";
+    k.order_stale = true;
   }
   k.n = static_cast<MUMPS_INT>(n);
   solve_sum(k, agreed == 2, agreed >= 1, b, x, rank);
@@ -464,7 +525,7 @@ AnyType SolveOp::operator()(Stack stack) const {
 // factorizations, the solves, CPU seconds of the same three (this process), MUMPS memory of this process at
 // the last factorization (MB), entries in the factors (all processes), delayed pivots, the ordering of the
 // last analysis (MUMPS's INFOG(7): 1 METIS's nested dissection given by dlmfsi, 0 AMD, 2 AMF, 4 PORD, 6
-// QAMD)]. Local: no communication. An id never used gives zeros.
+// QAMD), analyses that reused the kept nested dissection]. Local: no communication. An id never used gives zeros.
 long solve_stats(long const& id, KN<double>* const& s) {
   s->resize(kStats);
   *s = 0.;
@@ -480,6 +541,7 @@ long solve_stats(long const& id, KN<double>* const& s) {
   (*s)[10] = k.factor_entries;
   (*s)[11] = k.delayed;
   (*s)[12] = k.ordering;
+  (*s)[13] = static_cast<double>(k.order_reuses);
   return 1;
 }
 
@@ -499,7 +561,9 @@ static void Load_Init() {
   Global.Add("dlmfsisolve", "(", new OneOperatorCode<SolveOp>);
   Global.Add("dlmfsisolvestats", "(", new OneOperator2_<long, long, KN<double>*>(solve_stats));
   Global.Add("dlmfsisolvefree", "(", new OneOperator1_<long, long>(solve_free));
+#ifndef DLMFSI_SEQUENTIAL
   dlmfsi_register_share_sum();
+#endif
   ff_atend(release_all);   // before FreeFem++-mpi finalizes MPI
 }
 
