@@ -307,10 +307,12 @@ void choose_ordering(Kept& k, int rank) {
   k.m.perm_in = given && rank == 0 ? k.order.data() : nullptr;
 }
 
-// After a fresh analysis by MUMPS's own choice (ordering="mumps"): its pivot order, SYM_PERM on the host (the
-// position of each unknown, as PERM_IN), kept for the next patterns of the same size.
+// After a fresh analysis by MUMPS's own choice (ordering="mumps", a system below kMinNestedDissection, a build
+// without METIS): its pivot order, SYM_PERM on the host (the position of each unknown, as PERM_IN), kept for the
+// next patterns of the same size like dlmfsi's (FSI-3's preconditioner, 19,503 unknowns: Scotch's analysis 0.46
+// CPU s against 0.15 s for its factorization).
 void keep_order(Kept& k, int rank) {
-  if (!k.mumps_order || k.order_reused || rank != 0 || !k.m.sym_perm) return;
+  if (k.order_reused || rank != 0 || !k.order.empty() || !k.m.sym_perm) return;
   k.order.assign(k.m.sym_perm, k.m.sym_perm + k.n);
 }
 
