@@ -23,7 +23,7 @@
 // numerical factorization are kept per id: the next call with an id reuses the factorization when no
 // process's share changed, and the analysis when no process's share changed pattern (the sparsity
 // pattern, entries in the same order); the processes agree on that collectively; a new pattern of the same size
-// keeps the last nested dissection (below) while its fill stays within 20 %. The analysis is sequential,
+// keeps the last pivot order (choose_ordering) while its fill stays within 20 %. The analysis is sequential,
 // on the host (ICNTL(28) = 1), with METIS's nested dissection of the whole pattern as the pivot order
 // (fill_ordering.hpp, ICNTL(7) = 1; from 20,000 unknowns, when the build has libmetis-dev): Debian's parallel
 // MUMPS is built without METIS and Scotch (a parallel analysis, ICNTL(28) = 2, fails with -38), and its own
@@ -110,8 +110,9 @@ struct Kept {
   double factor_entries = 0;  // entries in the factors, all processes (INFOG(29))
   double delayed = 0;     // delayed pivots (INFOG(13)): how far threshold pivoting strayed from the ordering
   std::vector<MUMPS_INT> order;  // the host's pivot order given to MUMPS (PERM_IN), empty: MUMPS's choice
-  // A nested dissection is kept for the next analyses of the same size while the factors it gives stay within
-  // kOrderFill of those of the pattern it was computed on (estimated entries, INFOG(20)).
+  // The pivot order of the last fresh analysis (dlmfsi's nested dissection or MUMPS's own) is kept for the next
+  // analyses of the same size while the factors it gives stay within kOrderFill of those of the pattern it was
+  // computed on (estimated entries, INFOG(20)).
   bool order_reused = false;     // the last analysis took the kept order
   bool order_stale = false;      // the kept order filled too much: a new one at the next analysis
   double order_entries = 0;      // estimated entries in the factors on the order's own pattern
@@ -251,7 +252,7 @@ std::string run(Kept& k, int job, const char* phase) {
 void choose_ordering(Kept& k, int rank) {
   static_assert(sizeof(MUMPS_INT) == sizeof(int), "32-bit MUMPS indices");
   int reuse = rank == 0 && !k.order_stale && k.order_skip == 0 && static_cast<long>(k.order.size()) == k.n ? 1 : 0;
-  if (k.order_skip > 0) --k.order_skip;
+  if (k.order_skip > 0 && !k.order_stale) --k.order_skip;   // a skip counts analyses after the rejected one
   dlmfsi_comm::broadcast(&reuse, 1);
   k.order_reused = reuse != 0;
   if (reuse) {
@@ -517,6 +518,8 @@ AnyType SolveOp::operator()(Stack stack) const {
   if (k.mumps_order != (ordering == "mumps")) {   // another ordering asked for: the kept order is not it
     k.mumps_order = ordering == "mumps";
     k.order_stale = true;
+    k.order_skip = 0;
+    k.order_skip_next = 1;
   }
   k.n = static_cast<MUMPS_INT>(n);
   solve_sum(k, agreed == 2, agreed >= 1, b, x, rank);
