@@ -6,9 +6,10 @@
 //   real[int] x(n);
 //   int fresh = dlmfsisolve(A, b, x, id=0);   // A, b: this process's shares, global numbering
 //   dlmfsisolve(A, b, x, id=0, ordering="mumps");   // MUMPS's own pivot order instead of dlmfsi's (below)
+//   dlmfsisolve(A, b, x, id=0, symmetric=true);      // LDL^T when A is symmetric (checked), else LU
 //   dlmfsisolve(A, b, x, id=0, kept=true);    // a solve with id 0's factorization; A is not read
 //   matrix S = dlmfsisum(A);                  // the shares summed, whole on every process (share_sum.cpp)
-//   real[int] s(14); dlmfsisolvestats(0, s);  // counts, times and memory of the kept factorization 0
+//   real[int] s(15); dlmfsisolvestats(0, s);  // counts, times and memory of the kept factorization 0
 //   dlmfsisolvefree(0);                       // releases it
 //
 // The matrix solved is A = sum over processes of their A (entries at one position add up, so a process
@@ -67,7 +68,7 @@
 namespace {
 
 constexpr long kMaxId = 1000;          // ids 0 .. kMaxId - 1
-constexpr int kStats = 14;             // entries of dlmfsisolvestats
+constexpr int kStats = 15;             // entries of dlmfsisolvestats
 constexpr int kMemoryRetries = 4;      // workspace estimate doubled at most this many times
 constexpr double kOrderFill = 1.2;     // a kept order is dropped once its factors grow beyond this factor
 constexpr long kOrderSkipMax = 64;
@@ -207,10 +208,41 @@ std::string agree(const std::string& failure, long n, long id, bool solve_only) 
   return "";
 }
 
+// Is the share symmetric: for every entry (i, j) an entry (j, i), equal off the diagonal within
+// kSymmetryTolerance of the largest off-diagonal entry of rows i and j? (FreeFEM's on() changes only the
+// diagonal of a symmetric form's matrix; the two entries of a pair may differ in the last bits, the form's terms
+// being summed in another order, and an entry that cancels to round-off may be 1e-17 one way and 3e-17 the other.)
+constexpr double kSymmetryTolerance = 1e-12;
+bool symmetric_share(const std::vector<dlmfsi::Triplet>& t) {
+  int rows = 0;
+  for (const dlmfsi::Triplet& e : t) rows = std::max(rows, std::max(e.row, e.col) + 1);
+  std::vector<double> largest(rows, 0.0);
+  for (const dlmfsi::Triplet& e : t)
+    if (e.row != e.col) largest[e.row] = std::max(largest[e.row], std::fabs(e.value));
+  std::vector<std::size_t> by_row(t.size()), by_col(t.size());
+  for (std::size_t k = 0; k < t.size(); ++k) by_row[k] = by_col[k] = k;
+  std::sort(by_row.begin(), by_row.end(), [&](std::size_t p, std::size_t q) {
+    return t[p].row != t[q].row ? t[p].row < t[q].row : t[p].col < t[q].col;
+  });
+  std::sort(by_col.begin(), by_col.end(), [&](std::size_t p, std::size_t q) {
+    return t[p].col != t[q].col ? t[p].col < t[q].col : t[p].row < t[q].row;
+  });
+  // (i, j) in row order against (j, i) in column order: the same keys in the same order when symmetric
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    const dlmfsi::Triplet &u = t[by_row[k]], &v = t[by_col[k]];
+    if (u.row != v.col || u.col != v.row) return false;
+    if (u.row != u.col &&
+        std::fabs(u.value - v.value) > kSymmetryTolerance * std::max(largest[u.row], largest[u.col]))
+      return false;
+  }
+  return true;
+}
+
 // This process's share of A as 1-based triplets (a matrix stored as its lower half is unfolded); checks the
-// shapes and that every entry is finite.
+// shapes and that every entry is finite. symmetric: asked to use the symmetry; then true when the share is
+// symmetric (symmetric_share).
 void read_share(Matrice_Creuse<double>* a, const KN_<double>& b, long& n, std::vector<MUMPS_INT>& rows,
-                std::vector<MUMPS_INT>& cols, std::vector<double>& values) {
+                std::vector<MUMPS_INT>& cols, std::vector<double>& values, bool& symmetric) {
   if (!a) throw Failure("the matrix is not defined");
   const long rn = a->N(), cn = a->M();
   if (rn != cn)
@@ -224,6 +256,7 @@ void read_share(Matrice_Creuse<double>* a, const KN_<double>& b, long& n, std::v
   for (long i = 0; i < b.N(); ++i)
     if (!std::isfinite(b[i])) throw Failure("the right-hand side holds NaN or Inf (entry " + std::to_string(i) + ")");
   const std::vector<dlmfsi::Triplet> t = dlmfsi_ff::matrix_triplets(a, "dlmfsisolve");
+  symmetric = symmetric && symmetric_share(t);
   rows.resize(t.size());
   cols.resize(t.size());
   values.resize(t.size());
@@ -232,6 +265,21 @@ void read_share(Matrice_Creuse<double>* a, const KN_<double>& b, long& n, std::v
     cols[k] = t[k].col + 1;
     values[k] = t[k].value;
   }
+}
+
+// The lower triangle of 1-based triplets, in place (a symmetric matrix as MUMPS reads it with SYM = 2).
+void keep_lower(std::vector<MUMPS_INT>& rows, std::vector<MUMPS_INT>& cols, std::vector<double>& values) {
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < rows.size(); ++k)
+    if (cols[k] <= rows[k]) {
+      rows[kept] = rows[k];
+      cols[kept] = cols[k];
+      values[kept] = values[k];
+      ++kept;
+    }
+  rows.resize(kept);
+  cols.resize(kept);
+  values.resize(kept);
 }
 
 // One MUMPS phase (JOB = job); the message of a failure, "" on success. INFOG is the same on every
@@ -423,7 +471,7 @@ void solve_sum(Kept& k, bool analyse, bool factor, const KN_<double>& b, KN<doub
 class SolveOp : public E_F0mps {
  public:
   typedef long Result;
-  static const int n_name_param = 3;
+  static const int n_name_param = 4;
   static basicAC_F0::name_and_type name_param[n_name_param];
   Expression matrix, rhs, solution;
   Expression nargs[n_name_param];
@@ -442,7 +490,7 @@ class SolveOp : public E_F0mps {
 };
 
 basicAC_F0::name_and_type SolveOp::name_param[n_name_param] = {
-    {"id", &typeid(long)}, {"kept", &typeid(bool)}, {"ordering", &typeid(string*)}};
+    {"id", &typeid(long)}, {"kept", &typeid(bool)}, {"ordering", &typeid(string*)}, {"symmetric", &typeid(bool)}};
 
 AnyType SolveOp::operator()(Stack stack) const {
   dlmfsi_ff::last_error().clear();
@@ -451,6 +499,7 @@ AnyType SolveOp::operator()(Stack stack) const {
   const long id = nargs[0] ? GetAny<long>((*nargs[0])(stack)) : 0L;
   const bool solve_only = nargs[1] ? GetAny<bool>((*nargs[1])(stack)) : false;
   const std::string ordering = nargs[2] ? *GetAny<string*>((*nargs[2])(stack)) : "dissection";
+  bool symmetric = nargs[3] ? GetAny<bool>((*nargs[3])(stack)) : false;
   Matrice_Creuse<double>* a = GetAny<Matrice_Creuse<double>*>((*matrix)(stack));
   const KN_<double> b = GetAny<KN_<double> >((*rhs)(stack));
   KN<double>* x = GetAny<KN<double>*>((*solution)(stack));
@@ -478,7 +527,7 @@ AnyType SolveOp::operator()(Stack stack) const {
       for (long i = 0; i < n; ++i)
         if (!std::isfinite(b[i])) throw Failure("the right-hand side holds NaN or Inf (entry " + std::to_string(i) + ")");
     } else {
-      read_share(a, b, n, rows, cols, values);
+      read_share(a, b, n, rows, cols, values, symmetric);
     }
   } catch (...) {
     failure = dlmfsi_ff::current_message();
@@ -490,9 +539,13 @@ AnyType SolveOp::operator()(Stack stack) const {
     return SetAny<long>(0L);
   }
 
+  // symmetric=true: LDL^T (SYM = 2) on the lower triangle when every share is symmetric, else LU as without it
+  symmetric = dlmfsi_comm::max_over_processes(symmetric ? 0 : 1) == 0;
+  if (symmetric) keep_lower(rows, cols, values);
   std::unique_ptr<Kept>& slot = kept()[id];
   if (!slot) slot.reset(new Kept);
   Kept& k = *slot;
+  if (k.live && k.m.sym != (symmetric ? 2 : 0)) k.terminate();   // SYM is set when MUMPS starts
   // 2: a new analysis (first call, new size or new pattern somewhere), 1: a new factorization, 0: neither.
   int change = 0;
   if (!k.live || !k.factored || k.n != n || rows != k.rows || cols != k.cols)
@@ -508,7 +561,7 @@ AnyType SolveOp::operator()(Stack stack) const {
   if (!k.live) {
     k.m = DMUMPS_STRUC_C{};
     k.m.par = 1;   // the host works too
-    k.m.sym = 0;
+    k.m.sym = symmetric ? 2 : 0;   // 2: general symmetric (indefinite: the saddle points' pressure block)
     k.m.comm_fortran = static_cast<MUMPS_INT>(dlmfsi_comm::fortran_world());
     const std::string err = run(k, -1, "initialization");
     if (!err.empty()) dlmfsi_ff::fail(err);
@@ -530,7 +583,8 @@ AnyType SolveOp::operator()(Stack stack) const {
 // factorizations, the solves, CPU seconds of the same three (this process), MUMPS memory of this process at
 // the last factorization (MB), entries in the factors (all processes), delayed pivots, the ordering of the
 // last analysis (MUMPS's INFOG(7): 1 METIS's nested dissection given by dlmfsi, 0 AMD, 2 AMF, 4 PORD, 6
-// QAMD), analyses that reused the kept nested dissection]. Local: no communication. An id never used gives zeros.
+// QAMD), analyses that reused the kept pivot order, MUMPS's SYM (2: LDL^T of a symmetric matrix, 0: LU)].
+// Local: no communication. An id never used gives zeros.
 long solve_stats(long const& id, KN<double>* const& s) {
   s->resize(kStats);
   *s = 0.;
@@ -547,6 +601,7 @@ long solve_stats(long const& id, KN<double>* const& s) {
   (*s)[11] = k.delayed;
   (*s)[12] = k.ordering;
   (*s)[13] = static_cast<double>(k.order_reuses);
+  (*s)[14] = k.live ? k.m.sym : 0;
   return 1;
 }
 
