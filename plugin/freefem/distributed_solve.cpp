@@ -118,11 +118,12 @@ struct Kept {
   bool order_stale = false;      // the kept order filled too much: a new one at the next analysis
   double order_entries = 0;      // estimated entries in the factors on the order's own pattern
   long order_reuses = 0;         // analyses that reused a kept order (dlmfsisolvestats)
-  // After a kept order filled too much, the next order_skip analyses order afresh without trying it (1, 2, 4, ...
-  // up to kOrderSkipMax while it keeps failing; 0 again once it holds): a solid that moves a cell per step
-  // moves the coupling's rows across the dissection's separators (the falling disk's preconditioner: 1.4 to 2.1
-  // times the fill), a slow one does not.
+  // A kept order that fills too much at its first reuse makes the next order_skip analyses order afresh without
+  // trying theirs (1, 2, 4, ... up to kOrderSkipMax while that repeats; 0 again once an order serves): a solid
+  // that moves a cell per step moves the coupling's rows across the dissection's separators (the falling disk's
+  // preconditioner: 1.4 to 2.1 times the fill), a slow one does not (FSI-3's flag: an order serves 3 to 5 steps).
   long order_skip = 0, order_skip_next = 1;
+  long order_served = 0;         // analyses the current order has served since it was computed
   // ordering="mumps": MUMPS's own choice at a fresh analysis (its order then kept from SYM_PERM), instead of
   // dlmfsi's nested dissection. Sequential MUMPS orders by its own METIS or Scotch, and its order solves faster
   // than the nested dissection given as PERM_IN (the falling disk's fluid block: 20.3e6 entries in the factors
@@ -397,15 +398,21 @@ std::string factor_and_solve(Kept& k, bool analyse, bool factor, std::vector<dou
       if (!err.empty()) break;
       const double estimate = k.m.infog[19] >= 0 ? k.m.infog[19] : -1e6 * k.m.infog[19];   // INFOG(20)
       keep_order(k, rank);
-      if (!k.order_reused) k.order_entries = estimate;
-      if (!k.order_reused) break;
+      if (!k.order_reused) {
+        k.order_entries = estimate;
+        k.order_served = 0;
+        break;
+      }
       if (estimate <= kOrderFill * k.order_entries) {
+        ++k.order_served;
         k.order_skip_next = 1;
         break;
       }
       k.order_stale = true;
-      k.order_skip = k.order_skip_next;
-      k.order_skip_next = std::min(2 * k.order_skip_next, kOrderSkipMax);
+      if (k.order_served == 0) {   // not even one reuse: wait before the next try
+        k.order_skip = k.order_skip_next;
+        k.order_skip_next = std::min(2 * k.order_skip_next, kOrderSkipMax);
+      }
     }
     c.add_to(k.wall[0], k.cpu[0]);
     if (!err.empty()) return err;
