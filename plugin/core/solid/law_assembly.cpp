@@ -148,33 +148,11 @@ const CsrMatrix& LawAssembly::matrix(const LawProblem& p, const std::vector<Trip
 }
 
 const CsrMatrix& LawAssembly::sum(int n) {
-  size_t count = 0;
-  for (const auto& part : triplets_) count += part.size();
-  bool same = matrix_.rows == n && keys_.size() == count;
-  for (size_t t = 0, e = 0; same && e < triplets_.size(); ++e)
-    for (const Triplet& x : triplets_[e])
-      if (keys_[t++] != static_cast<long long>(x.row) * n + x.col) {
-        same = false;
-        break;
-      }
-  if (!same) {
-    matrix_ = compress(n, n, triplets_);
-    keys_.clear();
-    where_.clear();
-    for (const auto& part : triplets_)
-      for (const Triplet& x : part) {
-        keys_.push_back(static_cast<long long>(x.row) * n + x.col);
-        const auto first = matrix_.column.begin() + matrix_.start[x.row];
-        const auto last = matrix_.column.begin() + matrix_.start[x.row + 1];
-        where_.push_back(static_cast<int>(std::lower_bound(first, last, x.col) - matrix_.column.begin()));
-      }
-    return matrix_;
+  if (matrix_.rows == n && matrix_.cols == n) {
+    in_place_.start(matrix_);
+    if (in_place_.sum_rows(0, n, triplets_.data(), triplets_.size())) return matrix_;
   }
-  std::fill(matrix_.value.begin(), matrix_.value.end(), 0.0);
-  double* value = matrix_.value.data();
-  const int* where = where_.data();
-  for (const auto& part : triplets_)
-    for (const Triplet& x : part) value[*where++] += x.value;
+  matrix_ = compress(n, n, triplets_);
   return matrix_;
 }
 

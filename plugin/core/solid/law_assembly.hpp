@@ -13,6 +13,7 @@
 #include "fe/rules.hpp"
 #include "solid/law.hpp"
 #include "sparse/csr_matrix.hpp"
+#include "sparse/in_place_sum.hpp"
 #include "sparse/sparse.hpp"  // compress
 
 namespace dlmfsi {
@@ -73,14 +74,13 @@ class LawAssembly {
   void rhs(const LawProblem& p, std::vector<double>& out) const;
 
  private:
-  // The matrix of the triplets (K's, then plus's): compressed on a new pattern, else summed in place
-  // through where_ (the entry of each triplet), in the triplets' order (compress's sums, bit for bit).
+  // The matrix of the triplets (K's, then plus's): summed in place on the last call's pattern (InPlaceSum:
+  // compress's sums, bit for bit), compressed again when the pattern changed.
   const CsrMatrix& sum(int n);
 
   std::vector<std::vector<Triplet>> triplets_ = std::vector<std::vector<Triplet>>(2);  // K's, plus's
   CsrMatrix matrix_;
-  std::vector<long long> keys_;  // the last call's triplets' row * n + col, in order
-  std::vector<int> where_;       // their entries in matrix_
+  InPlaceSum in_place_;
 };
 
 }  // namespace dlmfsi
