@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "point.hpp"
+#include "geometry/exact_sign.hpp"
 
 namespace dlmfsi {
 
@@ -53,15 +54,12 @@ Piece clip(const Point a[3], const Point b[3], unsigned& beyond, Rest& rest);
 // pieces are the originals' translated exactly, except that crossings are constructed from the translated
 // coordinates: rounded to the ulp of the local coordinates rather than of |t|.
 inline bool translate_exactly(const Point* t, int n, Point o, Point* out) {
-  double error = 0;
+  bool exact = true;
   for (int i = 0; i < n; ++i) {
-    const double dx = t[i].x - o.x, dy = t[i].y - o.y;
-    // TwoSum(a, -b) with s = a - b: the error (a - (s + b)) + (-b - (s - (s + b))) is 0 iff s is exact.
-    const double ax = dx + o.x, ay = dy + o.y;
-    error += std::fabs((t[i].x - ax) - (o.x + (dx - ax))) + std::fabs((t[i].y - ay) - (o.y + (dy - ay)));
-    out[i] = {dx, dy};
+    exact = exact_difference(t[i].x, o.x, out[i].x) && exact;
+    exact = exact_difference(t[i].y, o.y, out[i].y) && exact;
   }
-  return error == 0;
+  return exact;
 }
 
 // The point where segments [p, q] and [r, s] cross (they must cross properly), canonical in the order of

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "point3.hpp"
+#include "geometry/exact_sign.hpp"
 #include "geometry/predicates3d.hpp"
 
 namespace dlmfsi {
@@ -118,16 +119,13 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
 // decides everything on translated tetrahedra as on the originals; only the crossings, constructed from the
 // translated coordinates, are rounded to the ulp of the local coordinates rather than of |t|.
 inline bool translate_exactly(const Point3* t, int n, Point3 o, Point3* out) {
-  double error = 0;
+  bool exact = true;
   for (int i = 0; i < n; ++i) {
-    const Point3 d = t[i] - o, back = d + o;
-    // TwoSum(a, -b) with s = a - b: the error (a - (s + b)) - (b + (s - (s + b))) is 0 iff s is exact.
-    error += std::fabs((t[i].x - back.x) - (o.x + (d.x - back.x))) +
-             std::fabs((t[i].y - back.y) - (o.y + (d.y - back.y))) +
-             std::fabs((t[i].z - back.z) - (o.z + (d.z - back.z)));
-    out[i] = d;
+    exact = exact_difference(t[i].x, o.x, out[i].x) && exact;
+    exact = exact_difference(t[i].y, o.y, out[i].y) && exact;
+    exact = exact_difference(t[i].z, o.z, out[i].z) && exact;
   }
-  return error == 0;
+  return exact;
 }
 
 // The point where segment [p, q] crosses the plane through x, y, z (it must cross it), canonical in the

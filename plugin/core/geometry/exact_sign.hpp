@@ -3,6 +3,14 @@
 
 namespace dlmfsi {
 
+// d = a - b rounded; true when that subtraction is exact. TwoSum(a, -b) with s = d: its error term
+// (a - (s + b)) - (b + (s - (s + b))) is 0 iff s = a - b exactly.
+inline bool exact_difference(double a, double b, double& d) {
+  d = a - b;
+  const double back = d + b;
+  return (a - back) - (b + (d - back)) == 0;
+}
+
 // Sign of sum_k prod_{i < arity} f[k * arity + i] for any finite doubles (arity 2 or 3, count <= 32),
 // exactly. Each product is split into a non-overlapping expansion with fused multiply-adds and summed
 // exactly while every rounding error is itself a double (no underflow, no overflow); when a product
