@@ -11,6 +11,7 @@
 #include <climits>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <exception>
 #include <memory>
 #include <string>
@@ -41,10 +42,43 @@ class SpaceBasis : public dlmfsi_ff::SpaceBasisOf<2, FESpace> {
   }
   void values(int k, Point xi, double* out) const override {
     static const bool what[last_operatortype] = {true, false, false, false, false, false, false, false, false, false};
+    if (remember_ && k > 0 && copied(k, xi, out)) return;
     basis_functions(k, xi, what, out);
+    if (remember_ && k > 0) compare(k, xi, out);
   }
 
+  // While on (one thread at a time): the point of the first values() call on an element other than 0 is
+  // kept, with element 0's values there; an element whose values there equal element 0's bit for bit gets
+  // them copied on the next calls at that point, without FreeFEM's evaluation. The fits of the multiplier
+  // and of the map's components on one space check every element at that one point (fe/basis_fit), so only
+  // the first fit evaluates them. What is kept stays valid while the space does (it is a function of it).
+  void remember_values(bool on) { remember_ = on; }
+
  private:
+  // values(k, xi) from element 0's when element k is known to give them bit for bit; else false.
+  bool copied(int k, Point xi, double* out) const {
+    if (!kept_point_ || xi.x != point_.x || xi.y != point_.y || same_[k] != 1) return false;
+    for (size_t f = 0; f < first_.size(); ++f) out[f * 3] = first_[f];
+    return true;
+  }
+  // After values(k, xi) gave out: element k marked as giving element 0's values at the kept point or not.
+  void compare(int k, Point xi, const double* out) const {
+    static const bool what[last_operatortype] = {true, false, false, false, false, false, false, false, false, false};
+    if (!kept_point_) {
+      std::vector<double> first(static_cast<size_t>(nd_) * nc_ * 3);
+      basis_functions(0, xi, what, first.data());
+      first_.resize(static_cast<size_t>(nd_) * nc_);
+      for (size_t f = 0; f < first_.size(); ++f) first_[f] = first[f * 3];
+      same_.assign(vh_.Th.nt, -1);
+      point_ = xi;
+      kept_point_ = true;
+    }
+    if (xi.x != point_.x || xi.y != point_.y || same_[k] >= 0) return;
+    bool same = true;
+    for (size_t f = 0; f < first_.size() && same; ++f) same = std::memcmp(&out[f * 3], &first_[f], sizeof(double)) == 0;
+    same_[k] = same ? 1 : 0;
+  }
+
   // The operators asked for in what (op_id, op_dx, op_dy) into out; the others are left as they are.
   void basis_functions(int k, Point xi, const bool* what, double* out) const {
     KNMK_<double> fb = evaluation_buffer();
@@ -58,6 +92,12 @@ class SpaceBasis : public dlmfsi_ff::SpaceBasisOf<2, FESpace> {
         if (what[op_dy]) o[2] = fb(df, c, op_dy);
       }
   }
+
+  bool remember_ = false;
+  mutable bool kept_point_ = false;
+  mutable Point point_{};
+  mutable std::vector<double> first_;      // element 0's values at point_, per function (dof * nc_ + component)
+  mutable std::vector<signed char> same_;  // per element: 1 its values at point_ are first_, 0 not, -1 not known
 };
 
 // The fluid side (mesh, search grid, fitted basis) of the last call.
@@ -83,11 +123,45 @@ namespace {
 // The solid side (solid mesh, multiplier fit) and the fits of the map's spaces of the last calls (the two
 // most recently used).
 struct SolidCache : dlmfsi_ff::SolidCacheOf<FESpace, SpaceBasis, dlmfsi::SolidSide, dlmfsi::PolynomialBasis, 2> {
-  // The solid side's own fit when it is the one asked for.
+  // SpaceBasis::remember_values on for a scope.
+  struct Remembering {
+    explicit Remembering(SpaceBasis& b) : basis(b) { basis.remember_values(true); }
+    ~Remembering() { basis.remember_values(false); }
+    Remembering(const Remembering&) = delete;
+    Remembering& operator=(const Remembering&) = delete;
+    SpaceBasis& basis;
+  };
+  // The side, its space's values at the fits' check point remembered while it is prepared.
+  const dlmfsi::SolidSide& get(const FESpace& vs, const std::vector<int>& comps) {
+    if (holds(vs, comps)) return *side;
+    fits.clear();
+    side.reset();
+    basis.reset(new SpaceBasis(vs));
+    {
+      const Remembering on(*basis);
+      side.reset(new dlmfsi::SolidSide(dlmfsi_ff::convert(vs.Th), *basis, comps));
+    }
+    space = &vs;
+    id = vs;
+    components = comps;
+    basis->tabulate_dofs();
+    return *side;
+  }
+  // The solid side's own fit when it is the one asked for; a fit of another component of the side's space
+  // on the side's kept basis (its dofs tabulated, its values at the check point remembered from the side's
+  // fit); else SolidCacheOf's.
   const dlmfsi::PolynomialBasis* map_fit(const FESpace& vm, int comp, int degree) {
-    if (&vm == space && id == vm && side->components() == std::vector<int>{comp} && side->degree() == degree)
-      return &side->basis();
-    return SolidCacheOf::map_fit(vm, comp, degree);
+    if (!(&vm == space && id == vm)) return SolidCacheOf::map_fit(vm, comp, degree);
+    if (side->components() == std::vector<int>{comp} && side->degree() == degree) return &side->basis();
+    for (auto it = fits.begin(); it != fits.end(); ++it)
+      if (it->space == &vm && it->id == vm && it->comp == comp && it->degree == degree) {
+        std::rotate(it, it + 1, fits.end());
+        return fits.back().fit.get();
+      }
+    const Remembering on(*basis);
+    auto fit = std::make_unique<dlmfsi::PolynomialBasis>(*basis, side->mesh(), degree, std::vector<int>{comp});
+    fits.push_back(MapFit{&vm, vm, comp, degree, nullptr, std::move(fit)});
+    return fits.back().fit.get();
   }
 };
 
