@@ -131,12 +131,14 @@ struct SolidCache : dlmfsi_ff::SolidCacheOf<FESpace, SpaceBasis, dlmfsi::SolidSi
     Remembering& operator=(const Remembering&) = delete;
     SpaceBasis& basis;
   };
-  // The side, its space's values at the fits' check point remembered while it is prepared.
+  // The side, on its space's basis with the dofs tabulated and the values at the fits' check point
+  // remembered while the side is prepared.
   const dlmfsi::SolidSide& get(const FESpace& vs, const std::vector<int>& comps) {
     if (holds(vs, comps)) return *side;
     fits.clear();
     side.reset();
     basis.reset(new SpaceBasis(vs));
+    basis->tabulate_dofs();  // before the side, which reads every element's dofs too
     {
       const Remembering on(*basis);
       side.reset(new dlmfsi::SolidSide(dlmfsi_ff::convert(vs.Th), *basis, comps));
@@ -144,7 +146,6 @@ struct SolidCache : dlmfsi_ff::SolidCacheOf<FESpace, SpaceBasis, dlmfsi::SolidSi
     space = &vs;
     id = vs;
     components = comps;
-    basis->tabulate_dofs();
     return *side;
   }
   // The solid side's own fit when it is the one asked for; a fit of another component of the side's space

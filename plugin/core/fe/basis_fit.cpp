@@ -28,7 +28,10 @@ BasisFit::BasisFit(const Basis& basis, int elements, int degree, const std::vect
 void BasisFit::fit_elements(int elements) {
   // Each function whose shared fit equals an earlier one's is evaluated once, as that one's twin.
   twin_ = twin_functions(reference_, nm_);
-  for (int k = 1; k < elements; ++k) check(k);
+  // The monomials at the check point, the same for every element.
+  double v[monomial_count(kMaxLatticeDegree)], d1[monomial_count(kMaxLatticeDegree)], d2[monomial_count(kMaxLatticeDegree)];
+  monomials(degree_, kCheckPoint, v, d1, d2);
+  for (int k = 1; k < elements; ++k) check(k, v);
   derive(reference_, reference_derivative_);
   derive(own_, own_derivative_);
 }
@@ -39,10 +42,8 @@ void BasisFit::fit(int k, double* c) {
                  [this](Point xi, double* v) { monomial_values(degree_, xi, v); }, sample_.data(), c);
 }
 
-void BasisFit::check(int k) {
+void BasisFit::check(int k, const double* v) {
   // One evaluation decides whether element k shares the reference fit.
-  double v[monomial_count(kMaxLatticeDegree)], d1[monomial_count(kMaxLatticeDegree)], d2[monomial_count(kMaxLatticeDegree)];
-  monomials(degree_, kCheckPoint, v, d1, d2);
   basis_.values(k, kCheckPoint, sample_.data());
   if (fit_matches<2>(reference_.data(), nm_, v, functions_, sample_.data())) return;
   slot_[k] = static_cast<int>(own_.size());

@@ -44,7 +44,7 @@ class BasisFit {
 
  private:
   void fit(int k, double* coefficients);
-  void check(int k);
+  void check(int k, const double* v);  // v: the monomials at the check point
   void derive(const std::vector<double>& coefficients, std::vector<double>& derivative) const;
   const Basis& basis_;
   int degree_, nm_;

@@ -20,17 +20,15 @@ void CompressedRows::compress(int cols, const std::vector<Triplet>* parts, std::
       if (in_range(t.row)) ++offset_[t.row - first_row + 1];
   for (int i = 0; i < rows; ++i) offset_[i + 1] += offset_[i];
   const size_t triplets = offset_.back();
-  room(bucket_col_, triplets);
-  room(bucket_value_, triplets);
-  bucket_col_.resize(triplets);
-  bucket_value_.resize(triplets);
+  int* const bucket_col = bucket_col_.room(triplets);
+  double* const bucket_value = bucket_value_.room(triplets);
   fill_.assign(offset_.begin(), offset_.end() - 1);
   for (const std::vector<Triplet>* p = parts; p != parts_end; ++p)
     for (const Triplet& t : *p) {
       if (!in_range(t.row)) continue;
       const int at = fill_[t.row - first_row]++;
-      bucket_col_[at] = t.col;
-      bucket_value_[at] = t.value;
+      bucket_col[at] = t.col;
+      bucket_value[at] = t.value;
     }
 
   column.clear();
@@ -42,13 +40,13 @@ void CompressedRows::compress(int cols, const std::vector<Triplet>* parts, std::
   for (int i = 0; i < rows; ++i) {
     const int begin = static_cast<int>(column.size());
     for (int e = offset_[i]; e < offset_[i + 1]; ++e) {
-      const int c = bucket_col_[e];
+      const int c = bucket_col[e];
       if (position_[c] >= begin) {
-        value[position_[c]] += bucket_value_[e];
+        value[position_[c]] += bucket_value[e];
       } else {
         position_[c] = static_cast<int>(column.size());
         column.push_back(c);
-        value.push_back(bucket_value_[e]);
+        value.push_back(bucket_value[e]);
       }
     }
     // the row by column: insertion sort for the usual handful of entries, std::sort for long rows (a
