@@ -123,24 +123,24 @@ namespace {
 // The solid side (solid mesh, multiplier fit) and the fits of the map's spaces of the last calls (the two
 // most recently used).
 struct SolidCache : dlmfsi_ff::SolidCacheOf<FESpace, SpaceBasis, dlmfsi::SolidSide, dlmfsi::PolynomialBasis, 2> {
-  // SpaceBasis::remember_values on for a scope.
+  // SpaceBasis::remember_values(on) for a scope.
   struct Remembering {
-    explicit Remembering(SpaceBasis& b) : basis(b) { basis.remember_values(true); }
+    Remembering(SpaceBasis& b, bool on) : basis(b) { basis.remember_values(on); }
     ~Remembering() { basis.remember_values(false); }
     Remembering(const Remembering&) = delete;
     Remembering& operator=(const Remembering&) = delete;
     SpaceBasis& basis;
   };
-  // The side, on its space's basis with the dofs tabulated and the values at the fits' check point
-  // remembered while the side is prepared.
-  const dlmfsi::SolidSide& get(const FESpace& vs, const std::vector<int>& comps) {
+  // The side, on its space's basis with the dofs tabulated; with remember (the map's fits will be on other
+  // components of this space), the values at the fits' check point remembered while the side is prepared.
+  const dlmfsi::SolidSide& get(const FESpace& vs, const std::vector<int>& comps, bool remember) {
     if (holds(vs, comps)) return *side;
     fits.clear();
     side.reset();
     basis.reset(new SpaceBasis(vs));
     basis->tabulate_dofs();  // before the side, which reads every element's dofs too
     {
-      const Remembering on(*basis);
+      const Remembering on(*basis, remember);
       side.reset(new dlmfsi::SolidSide(dlmfsi_ff::convert(vs.Th), *basis, comps));
     }
     space = &vs;
@@ -159,7 +159,7 @@ struct SolidCache : dlmfsi_ff::SolidCacheOf<FESpace, SpaceBasis, dlmfsi::SolidSi
         std::rotate(it, it + 1, fits.end());
         return fits.back().fit.get();
       }
-    const Remembering on(*basis);
+    const Remembering on(*basis, true);
     auto fit = std::make_unique<dlmfsi::PolynomialBasis>(*basis, side->mesh(), degree, std::vector<int>{comp});
     fits.push_back(MapFit{&vm, vm, comp, degree, nullptr, std::move(fit)});
     return fits.back().fit.get();
@@ -298,7 +298,11 @@ const dlmfsi::CsrMatrix& DlmfsiOp::assemble(Stack stack, const dlmfsi::CouplingO
 
   const dlmfsi::FluidSide& fluid = fluid_cache().get(*vf, opt.fluid_components);
   SolidCache& cache = solid_cache();
-  const dlmfsi::SolidSide& solid = cache.get(*vs, opt.solid_components);
+  // The map on other components of the multiplier's space: its fits check the elements at the point where
+  // the side's fit does.
+  const bool map_on_side = (&sx == vs && opt.solid_components != std::vector<int>{px.second}) ||
+                           (&sy == vs && opt.solid_components != std::vector<int>{py.second});
+  const dlmfsi::SolidSide& solid = cache.get(*vs, opt.solid_components, map_on_side);
   cache.trim_fits();
   const SpaceBasis map_x_basis(sx), map_y_basis(sy);
   const int degree = dlmfsi::FieldMap::fit_degree(map_x_basis, px.second, map_y_basis, py.second);
