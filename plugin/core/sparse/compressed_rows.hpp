@@ -1,10 +1,10 @@
 // A range of the rows of a sparse matrix compressed from triplets.
 #pragma once
 #include <cstddef>
-#include <memory>
 #include <utility>
 #include <vector>
 
+#include "buffer_room.hpp"
 #include "sparse/csr_matrix.hpp"
 
 namespace dlmfsi {
@@ -27,24 +27,10 @@ class CompressedRows {
   void compress(int cols, const std::vector<Triplet>* parts, std::size_t count);
 
  private:
-  // Room for n values left uninitialized (each is written before it is read), grown by a quarter more.
-  template <class T>
-  struct Scratch {
-    std::unique_ptr<T[]> at;
-    std::size_t size = 0;
-    T* room(std::size_t n) {
-      if (size < n) {
-        at.reset();
-        size = n + n / 4;
-        at.reset(new T[size]);
-      }
-      return at.get();
-    }
-  };
   // counting sort by row: offsets, fill pointers and the buckets' columns and values
   std::vector<int> offset_, fill_;
-  Scratch<int> bucket_col_;
-  Scratch<double> bucket_value_;
+  RawRoom<int> bucket_col_;
+  RawRoom<double> bucket_value_;
   std::vector<int> position_;  // per column: where it sits in the current row, if there
   std::vector<std::pair<int, double>> row_;
 };
