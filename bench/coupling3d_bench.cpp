@@ -3,7 +3,9 @@
 // sides prepared once, then `calls` assemblies on one CouplingAssembly3, the map turned 0.01 rad further each
 // call (from 0.3 rad). Prints each call's CPU seconds, then the first call and the median of the steady calls
 // (the third on; the second when there are two) with the time per piece, and 1'B1 against the solid's volume.
-//   coupling3d_bench [fluid cubes per side = 16] [solid cubes per side = 16] [calls = 5] [threads = 1]
+//   coupling3d_bench [fluid cubes per side = 16] [solid cubes per side = 16] [calls = 5] [threads = 1] [dump]
+// dump: a file that receives the last call's matrix, one entry a line, "row column value" (%.17g), to compare
+// two builds' matrices entry by entry.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -23,6 +25,7 @@ int main(int argc, char** argv) {
   const int ns = argc > 2 ? std::atoi(argv[2]) : 16;
   const int calls = std::max(1, argc > 3 ? std::atoi(argv[3]) : 5);
   const int threads = argc > 4 ? std::atoi(argv[4]) : 1;
+  const char* dump = argc > 5 ? argv[5] : nullptr;
   const Mesh3 fluid = box_mesh(nf, nf, nf, {-1, -1, -1}, {2, 2, 2});
   const Mesh3 solid = box_mesh(ns, ns, ns, {-0.5, -0.5, -0.5}, {1, 1, 1});
   const P1Tet vf(fluid), vs(solid);
@@ -46,6 +49,16 @@ int main(int argc, char** argv) {
     std::printf("call %d: %.4f s CPU, %ld pieces\n", call + 1, cpu.back(), report.pieces);
     sum = 0;
     for (double v : b.value) sum += v;
+    if (dump && call + 1 == calls) {
+      std::FILE* out = std::fopen(dump, "w");
+      if (!out) {
+        std::fprintf(stderr, "coupling3d_bench: cannot write %s\n", dump);
+        return 1;
+      }
+      for (int r = 0; r + 1 < static_cast<int>(b.start.size()); ++r)
+        for (int e = b.start[r]; e < b.start[r + 1]; ++e) std::fprintf(out, "%d %d %.17g\n", r, b.column[e], b.value[e]);
+      std::fclose(out);
+    }
   }
   std::printf("%s\n", report.summary().c_str());
   const size_t steady = calls >= 3 ? 2 : 1;
