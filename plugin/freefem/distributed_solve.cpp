@@ -72,6 +72,7 @@ constexpr int kStats = 15;             // entries of dlmfsisolvestats
 constexpr int kMemoryRetries = 4;      // workspace estimate doubled at most this many times
 constexpr double kOrderFill = 1.2;     // a kept order is dropped once its factors grow beyond this factor
 constexpr long kOrderSkipMax = 64;
+constexpr long kSparseRhsFraction = 4;   // a right-hand side with at most n / this non-zeros is passed sparse
 
 // An input that does not fit (the message says which); raised on every process as a FreeFEM ExecError.
 struct Failure : std::runtime_error {
@@ -447,12 +448,38 @@ std::string factor_and_solve(Kept& k, bool analyse, bool factor, std::vector<dou
     k.delayed = k.m.infog[12];
   }
   PhaseClock c;
+  // A right-hand side with few non-zeros (a coupling's columns: the fluid dofs under the solid; a preconditioner's
+  // [0; y]) is given to MUMPS in sparse form, which then eliminates forward only along the paths of the assembly
+  // tree from those rows to its root (ICNTL(20) = 3); the solution comes back dense in rhs either way.
+  std::vector<double> sparse_values;
+  std::vector<MUMPS_INT> sparse_rows, sparse_start = {1, 1};
+  int sparse = 0;
   if (rank == 0) {
+    long nonzeros = 0;
+    for (double v : rhs) nonzeros += v != 0;
+    if (nonzeros > 0 && nonzeros <= k.n / kSparseRhsFraction) {
+      sparse = 1;
+      sparse_values.reserve(nonzeros);
+      sparse_rows.reserve(nonzeros);
+      for (MUMPS_INT i = 0; i < k.n; ++i)
+        if (rhs[i] != 0) {
+          sparse_values.push_back(rhs[i]);
+          sparse_rows.push_back(i + 1);
+        }
+      sparse_start[1] = static_cast<MUMPS_INT>(nonzeros) + 1;
+      k.m.rhs_sparse = sparse_values.data();
+      k.m.irhs_sparse = sparse_rows.data();
+      k.m.irhs_ptr = sparse_start.data();
+      k.m.nz_rhs = static_cast<MUMPS_INT>(nonzeros);
+    }
     k.m.rhs = rhs.data();
     k.m.nrhs = 1;
     k.m.lrhs = k.n;
   }
+  dlmfsi_comm::broadcast(&sparse, 1);
+  k.m.icntl[19] = sparse ? 3 : 0;
   err = run(k, 3, "solve");
+  k.m.icntl[19] = 0;
   c.add_to(k.wall[2], k.cpu[2]);
   if (err.empty()) ++k.count[2];
   return err;
