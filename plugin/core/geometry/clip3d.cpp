@@ -147,50 +147,67 @@ Piece3 assemble(const Candidate* c, int n, Normal&& normal) {
     out.planes[k] = static_cast<unsigned char>(c[order[k]].planes);
   }
   const unsigned char* planes = out.planes;
-  // on[plane]: the vertices on that plane (bit k for vertex k).
+  // on[plane]: the vertices on that plane (bit k for vertex k); count[plane] how many.
   unsigned on[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  int count[8] = {0, 0, 0, 0, 0, 0, 0, 0};
   for (int k = 0; k < out.n; ++k)
-    for (unsigned p = planes[k]; p != 0; p &= p - 1) on[__builtin_ctz(p)] |= 1u << k;
+    for (unsigned p = planes[k]; p != 0; p &= p - 1) {
+      const int plane = __builtin_ctz(p);
+      on[plane] |= 1u << k;
+      ++count[plane];
+    }
+  // shares[k]: the other vertices on at least two of vertex k's planes (each plane's vertices met again).
+  // On a face plane both lie on, two vertices are neighbours around it iff they share another plane, i.e.
+  // iff they share two.
+  unsigned shares[Piece3::kMaxVertices];
+  for (int k = 0; k < out.n; ++k) {
+    unsigned seen = 0, twice = 0;
+    for (unsigned p = planes[k]; p != 0; p &= p - 1) {
+      const unsigned here = on[__builtin_ctz(p)];
+      twice |= seen & here;
+      seen |= here;
+    }
+    shares[k] = twice & ~(1u << k);
+  }
   int used = 0;
   for (int plane = 0; plane < 8; ++plane) {
-    const unsigned bit = 1u << plane;
-    int list[Piece3::kMaxVertices], m = 0;
-    for (unsigned v = on[plane]; v != 0; v &= v - 1) list[m++] = __builtin_ctz(v);
+    const unsigned face = on[plane];
+    const int m = count[plane];
     if (m < 3 || out.faces == Piece3::kMaxFaces || used + m > Piece3::kMaxFaceIndices) continue;
     // The cycle: from the first vertex to its lower-numbered neighbour, then on to the neighbour that is
     // not the previous vertex; every vertex must have exactly two neighbours. v's neighbours on this face:
-    // the other vertices of the face that share another plane with v.
-    auto neighbours = [&](int v, int* nb) {
-      unsigned shared = 0;
-      for (unsigned p = planes[v] & ~bit; p != 0; p &= p - 1) shared |= on[__builtin_ctz(p)];
-      const unsigned found = on[plane] & shared & ~(1u << v);
-      if (found != 0) nb[0] = __builtin_ctz(found);
-      const unsigned rest = found & (found - 1);
-      if (rest != 0) nb[1] = __builtin_ctz(rest);
-      return (found != 0) + (rest != 0) + ((rest & (rest - 1)) != 0);  // how many, up to 3
-    };
-    int cycle[Piece3::kMaxVertices], length = 0;
+    // the other vertices of the face that share another plane with v (face & shares[v]).
+    unsigned char* cycle = out.face_index + used;
+    const int first = __builtin_ctz(face);
     bool ok = true;
-    int previous = -1, current = list[0];
-    while (ok && length < m) {
-      cycle[length++] = current;
-      int nb[2] = {-1, -1};
-      if (neighbours(current, nb) != 2) {
+    int length = 0, previous = -1, current = first;
+    while (length < m) {
+      cycle[length++] = static_cast<unsigned char>(current);
+      const unsigned found = face & shares[current], second = found & (found - 1);
+      if (found == 0 || second == 0 || (second & (second - 1)) != 0) {  // not exactly two
         ok = false;
         break;
       }
-      int next = previous < 0 ? std::min(nb[0], nb[1]) : (nb[0] == previous ? nb[1] : nb[0]);
-      if (previous >= 0 && nb[0] != previous && nb[1] != previous) ok = false;
+      const int n0 = __builtin_ctz(found), n1 = __builtin_ctz(second);  // n0 < n1
+      int next = n0;
+      if (previous >= 0) {
+        if (n0 == previous) next = n1;
+        else if (n1 != previous) {
+          ok = false;
+          break;
+        }
+      }
       previous = current;
       current = next;
     }
-    ok = ok && length == m && current == list[0];
+    ok = ok && length == m && current == first;
     if (!ok) {
       out.exact = false;
+      int list[Piece3::kMaxVertices], k = 0;
+      for (unsigned v = face; v != 0; v &= v - 1) list[k++] = __builtin_ctz(v);
       order_by_angles(out.v, list, m, normal(plane));
-      std::copy(list, list + m, cycle);
+      for (k = 0; k < m; ++k) cycle[k] = static_cast<unsigned char>(list[k]);
     }
-    for (int k = 0; k < m; ++k) out.face_index[used + k] = static_cast<unsigned char>(cycle[k]);
     used += m;
     out.face_start[++out.faces] = used;
   }
@@ -292,7 +309,106 @@ Piece3 clip(const Point3 a[4], const Point3 b[4], unsigned& beyond) {
   return clip(a, a_faces, b, beyond);
 }
 
-Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsigned& beyond) {
+namespace {
+
+// crossing(), through memo when there is one: tags 0-3 a's face i crossed by b's edge [p, q]; 4-9 a's edge
+// e crossing b's face (x, y, z); 10-15 a's edge e crossing b's edge [x, y]. b's points in the key sorted
+// (crossing() is a function of the sets).
+Point3 crossing_of_b_edge(ClipMemo3* memo, int i, Point3 p, Point3 q, Point3 x, Point3 y, Point3 z) {
+  if (!memo) return crossing(p, q, x, y, z);
+  sort2(p, q);
+  const Point3 key[2] = {p, q};
+  Point3 out;
+  int slot;
+  std::uint64_t hash;
+  if (memo->find(i, key, 2, out, slot, hash)) return out;
+  out = crossing(p, q, x, y, z);
+  memo->store(slot, hash, i, key, 2, out);
+  return out;
+}
+
+Point3 crossing_of_b_face(ClipMemo3* memo, int e, Point3 p, Point3 q, Point3 x, Point3 y, Point3 z) {
+  if (!memo) return crossing(p, q, x, y, z);
+  sort3(x, y, z);
+  const Point3 key[3] = {x, y, z};
+  Point3 out;
+  int slot;
+  std::uint64_t hash;
+  if (memo->find(4 + e, key, 3, out, slot, hash)) return out;
+  out = crossing(p, q, x, y, z);
+  memo->store(slot, hash, 4 + e, key, 3, out);
+  return out;
+}
+
+Point3 crossing_of_edges(ClipMemo3* memo, int e, Point3 p, Point3 q, Point3 x, Point3 y) {
+  if (!memo) return crossing(p, q, x, y);
+  sort2(x, y);
+  const Point3 key[2] = {x, y};
+  Point3 out;
+  int slot;
+  std::uint64_t hash;
+  if (memo->find(10 + e, key, 2, out, slot, hash)) return out;
+  out = crossing(p, q, x, y);
+  memo->store(slot, hash, 10 + e, key, 2, out);
+  return out;
+}
+
+// An exact orientation sign (asked when the filter cannot decide), through memo when there is one: the sign
+// kept under (tag, the m points of b in key) when found, else exact() stored there.
+template <class Exact>
+int memo_sign(ClipMemo3* memo, int tag, const Point3* key, int m, Exact&& exact) {
+  if (!memo) return exact();
+  Point3 kept;
+  int slot;
+  std::uint64_t hash;
+  if (memo->find(tag, key, m, kept, slot, hash)) return static_cast<int>(kept.x);
+  const int s = exact();
+  memo->store(slot, hash, tag, key, m, Point3{static_cast<double>(s), 0, 0});
+  return s;
+}
+
+// sign(x) of b's face plane f against a's vertex i: tags 16-19, the key f's points sorted (an odd
+// permutation of them flips the orientation).
+int face_side(ClipMemo3* memo, const PlaneSide& f, int i, Point3 x) {
+  const int s = f.filter(x);
+  if (s != 0) return s;
+  Point3 key[3] = {f.p, f.q, f.r};
+  int parity = 1;
+  auto order = [&parity](Point3& u, Point3& v) {
+    if (lex_less(v, u)) {
+      std::swap(u, v);
+      parity = -parity;
+    }
+  };
+  order(key[0], key[1]);
+  order(key[1], key[2]);
+  order(key[0], key[1]);
+  return parity * memo_sign(memo, 16 + i, key, 3, [&] { return orient3d_exact(key[0], key[1], key[2], x); });
+}
+
+// sign(x) of a's face plane f (face i) against b's vertex x: tags 20-23, the key x.
+int vertex_side(ClipMemo3* memo, const PlaneSide& f, int i, Point3 x) {
+  const int s = f.filter(x);
+  return s != 0 ? s : memo_sign(memo, 20 + i, &x, 1, [&] { return orient3d_exact(f.p, f.q, f.r, x); });
+}
+
+// orient3d(p, q, x, y) for a's edge e = [p, q] and b's edge [x, y]: tags 24-29, the key x, y sorted
+// (swapping them flips the sign).
+int edge_orientation(ClipMemo3* memo, int e, Point3 p, Point3 q, Point3 x, Point3 y) {
+  const int s = orient3d_filter(p, q, x, y);
+  if (s != 0) return s;
+  int flip = 1;
+  if (lex_less(y, x)) {
+    std::swap(x, y);
+    flip = -1;
+  }
+  const Point3 key[2] = {x, y};
+  return flip * memo_sign(memo, 24 + e, key, 2, [&] { return orient3d_exact(p, q, x, y); });
+}
+
+}  // namespace
+
+Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsigned& beyond, ClipMemo3* memo) {
   beyond = 0;
   TetFaces b_faces;
   b_faces.set(b);
@@ -319,7 +435,7 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
   for (int j = 0; j < 4; ++j) {
     pos_b[j] = neg_b[j] = 0;
     for (int i = 0; i < 4; ++i) {
-      const int side = side_b[j][i] = b_faces.side(j, a[i]);
+      const int side = side_b[j][i] = face_side(memo, b_faces.face[j], i, a[i]);
       if (side > 0) pos_b[j] |= 1u << i;
       if (side < 0) neg_b[j] |= 1u << i;
     }
@@ -331,7 +447,7 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
   for (int i = 0; i < 4; ++i) {
     pos_a[i] = neg_a[i] = 0;
     for (int j = 0; j < 4; ++j) {
-      const int side = side_a[i][j] = a_faces.side(i, b[j]);
+      const int side = side_a[i][j] = vertex_side(memo, a_faces.face[i], i, b[j]);
       if (side > 0) pos_a[i] |= 1u << j;
       if (side < 0) neg_a[i] |= 1u << j;
     }
@@ -369,7 +485,8 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
     for (auto& t : row) t = 2;  // not computed yet
   auto orientation = [&](int ea, int eb) {
     signed char& t = table[ea][eb];
-    if (t == 2) t = static_cast<signed char>(orient3d(a[kEdge[ea][0]], a[kEdge[ea][1]], b[kEdge[eb][0]], b[kEdge[eb][1]]));
+    if (t == 2)
+      t = static_cast<signed char>(edge_orientation(memo, ea, a[kEdge[ea][0]], a[kEdge[ea][1]], b[kEdge[eb][0]], b[kEdge[eb][1]]));
     return static_cast<int>(t);
   };
   // An edge crossing the plane of a face (k, l, m) of the other tetrahedron strictly: the crossing's sides
@@ -394,13 +511,13 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
     }
     if (!inside) continue;
     if (zeros == 0) {
-      add(crossing(a[p], a[q], b[k], b[l], b[m]), faces_at_edge(p, q) | 1u << (4 + j));
+      add(crossing_of_b_face(memo, ea, a[p], a[q], b[k], b[l], b[m]), faces_at_edge(p, q) | 1u << (4 + j));
     } else if (zeros == 1) {
       const unsigned long long bit = 1ull << (6 * ea + eb[zero]);
       if (edge_pairs & bit) continue;
       edge_pairs |= bit;
       const int x = kEdge[eb[zero]][0], y = kEdge[eb[zero]][1];
-      add(crossing(a[p], a[q], b[x], b[y]), faces_at_edge(p, q) | faces_at_edge(x, y) << 4);
+      add(crossing_of_edges(memo, ea, a[p], a[q], b[x], b[y]), faces_at_edge(p, q) | faces_at_edge(x, y) << 4);
     }
   }
   // b's edges through a's open faces (the edge-edge crossings were all found from a's side: an edge of a
@@ -416,7 +533,7 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
       inside = crossing_side(side_a[o][x], side_a[o][y], side_a[i][x], kPermutationSign[i][o],
                              [&] { return orientation(ea[z], eb); }) > 0;
     }
-    if (inside) add(crossing(b[x], b[y], a[k], a[l], a[m]), faces_at_edge(x, y) << 4 | 1u << i);
+    if (inside) add(crossing_of_b_edge(memo, i, b[x], b[y], a[k], a[l], a[m]), faces_at_edge(x, y) << 4 | 1u << i);
   }
   if (n < 4) return Piece3{};  // the interiors do not meet (touching along a segment or at a point)
   // A face plane of b that is a face plane of a too (same side: opposite sides separate) keeps a's bit.

@@ -1,6 +1,8 @@
 // The piece shared by two tetrahedra: a convex polyhedron of at most 12 vertices and 8 faces.
 #pragma once
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include "point3.hpp"
 #include "geometry/exact_sign.hpp"
@@ -83,6 +85,68 @@ struct TetFaces {
   int side(int j, Point3 x) const { return face[j].sign(x); }
 };
 
+// Values clip finds for one tetrahedron a clipped against many tetrahedra b (a mapped solid tetrahedron and
+// the fluid tetrahedra it meets): crossings that involve points of b, each a function of its arguments alone
+// (crossing() orders them itself), and orientation signs that the floating-point filter left to the exact
+// evaluation, kept under a key of a's part (a tag) and b's points as bits. A neighbour of b that shares those
+// points (a vertex, an edge: 4 to 6 fluid tetrahedra around it; a face: 2) gets the same value back, bit for
+// bit, instead of computing it again. Direct-mapped: a key whose slot is taken replaces the
+// entry there. Valid while a stays the same: clear() whenever a changes.
+class ClipMemo3 {
+ public:
+  static constexpr int kSlots = 128, kMaxKeyPoints = 3;
+  void clear() { used_[0] = used_[1] = 0; }
+  // The value (a point, or a sign as its x) kept for (tag, the m points p, m <= kMaxKeyPoints) if any: true and out set; else false, and
+  // slot, hash say where store() puts it.
+  bool find(int tag, const Point3* p, int m, Point3& out, int& slot, std::uint64_t& hash) const {
+    std::uint64_t h = static_cast<std::uint64_t>(tag);
+    for (int i = 0; i < m; ++i) h = rotate(h, 29) ^ (bits(p[i].x) + rotate(bits(p[i].y), 21) + rotate(bits(p[i].z), 42));
+    h *= 0x9E3779B97F4A7C15ull;
+    hash = h;
+    slot = static_cast<int>(h >> 57);  // the top 7 bits: kSlots = 128
+    if (!(used_[slot >> 6] >> (slot & 63) & 1u)) return false;
+    const Slot& e = slots_[slot];
+    if (e.hash != hash || e.tag != tag) return false;
+    for (int i = 0; i < m; ++i)
+      if (bits(e.key[3 * i]) != bits(p[i].x) || bits(e.key[3 * i + 1]) != bits(p[i].y) ||
+          bits(e.key[3 * i + 2]) != bits(p[i].z))
+        return false;
+    out = {e.value[0], e.value[1], e.value[2]};
+    return true;
+  }
+  void store(int slot, std::uint64_t hash, int tag, const Point3* p, int m, Point3 value) {
+    Slot& e = slots_[slot];
+    e.hash = hash;
+    e.tag = tag;
+    for (int i = 0; i < m; ++i) {
+      e.key[3 * i] = p[i].x;
+      e.key[3 * i + 1] = p[i].y;
+      e.key[3 * i + 2] = p[i].z;
+    }
+    e.value[0] = value.x;
+    e.value[1] = value.y;
+    e.value[2] = value.z;
+    used_[slot >> 6] |= std::uint64_t{1} << (slot & 63);
+  }
+
+ private:
+  static std::uint64_t rotate(std::uint64_t v, int r) { return v << r | v >> (64 - r); }
+  static std::uint64_t bits(double v) {
+    std::uint64_t b;
+    std::memcpy(&b, &v, sizeof b);
+    return b;
+  }
+  // Plain doubles (a Point3 is zero-initialized): a memo made for each solid tetrahedron costs nothing
+  // until it is used.
+  struct Slot {
+    std::uint64_t hash;
+    int tag;
+    double key[3 * kMaxKeyPoints], value[3];
+  };
+  Slot slots_[kSlots];
+  std::uint64_t used_[2] = {0, 0};
+};
+
 // Intersection of the closed, positively oriented tetrahedra a and b (orient3d(t[0], t[1], t[2], t[3]) > 0).
 //
 // Every decision is an exact orient3d sign on the input coordinates (predicates3d.hpp):
@@ -111,8 +175,10 @@ Piece3 clip(const Point3 a[4], const Point3 b[4]);
 Piece3 clip(const Point3 a[4], const Point3 b[4], unsigned& beyond);
 
 // The same with a's face planes formed by the caller (a = the mapped solid tetrahedron, clipped against
-// every fluid tetrahedron it meets).
-Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsigned& beyond);
+// every fluid tetrahedron it meets) and, when memo is given, the crossings kept for a (the same piece bit
+// for bit as without it).
+Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsigned& beyond,
+            ClipMemo3* memo = nullptr);
 
 // out = t - o for the n points of t when every coordinate's subtraction is exact (its TwoSum error term is
 // zero); false otherwise. An exact translation changes no orient3d sign and no lexicographic order, so clip

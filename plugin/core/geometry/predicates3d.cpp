@@ -49,6 +49,9 @@ int orient3d_terms(Point3 a, Point3 b, Point3 c, Point3 d, double (*f)[3]) {
 }  // namespace
 
 int orient3d_exact(Point3 a, Point3 b, Point3 c, Point3 d) {
+  // Two equal points make two rows of the determinant equal (or one zero): 0 exactly, without the expansion
+  // (coincident vertices of two meshes are the common degenerate case).
+  if (a == b || a == c || a == d || b == c || b == d || c == d) return 0;
   double f[24][3];
   const int n = orient3d_terms(a, b, c, d, f);
   return exact_sign_of_sum(&f[0][0], n, 3);

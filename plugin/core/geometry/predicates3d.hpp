@@ -84,6 +84,11 @@ struct PlaneSide {
     pn = {std::fabs(t1) + std::fabs(t2), std::fabs(t3) + std::fabs(t4), std::fabs(t5) + std::fabs(t6)};
   }
   int sign(Point3 x) const {
+    const int s = filter(x);
+    return s != 0 ? s : orient3d_exact(p, q, r, x);
+  }
+  // The filter alone: the sign when the floating-point estimate decides it, else 0 (then sign() is exact).
+  int filter(Point3 x) const {
     const Point3 w = x - p;
     const double det = w.x * n.x + w.y * n.y + w.z * n.z;
     const double ax = std::fabs(w.x), ay = std::fabs(w.y), az = std::fabs(w.z);
@@ -91,7 +96,7 @@ struct PlaneSide {
     const double bound = orient3d_bound(permanent, 1 + ax + ay + az);
     if (det > bound) return 1;
     if (-det > bound) return -1;
-    return orient3d_exact(p, q, r, x);
+    return 0;
   }
 };
 

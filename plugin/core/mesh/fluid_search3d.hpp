@@ -32,13 +32,22 @@ struct Tetrahedra {
   }
   // out = t - o when exact (translate_exactly in clip3d.hpp), for the search's pieces in local coordinates.
   static bool translate(const Point3 t[4], Point3 o, Point3 out[4]) { return translate_exactly(t, 4, o, out); }
-  using Faces = TetFaces;
-  static Piece3 clip(const Point3 t[4], const TetFaces& faces, const Point3 k[4], unsigned& beyond) {
-    return dlmfsi::clip(t, faces, k, beyond);
+  // What clip keeps of t for all the fluid tetrahedra it meets: its face planes, and the crossings found so
+  // far (neighbours share edges and faces, hence crossings), made for each t (set).
+  struct Faces {
+    TetFaces planes;
+    mutable ClipMemo3 memo;
+    void set(const Point3 t[4]) {
+      planes.set(t);
+      memo.clear();
+    }
+  };
+  static Piece3 clip(const Point3 t[4], const Faces& faces, const Point3 k[4], unsigned& beyond) {
+    return dlmfsi::clip(t, faces.planes, k, beyond, &faces.memo);
   }
   struct Rest {};  // the clipper tells nothing of t beyond a face
-  static Piece3 clip(const Point3 t[4], const TetFaces& faces, const Point3 k[4], unsigned& beyond, Rest&) {
-    return dlmfsi::clip(t, faces, k, beyond);
+  static Piece3 clip(const Point3 t[4], const Faces& faces, const Point3 k[4], unsigned& beyond, Rest&) {
+    return dlmfsi::clip(t, faces.planes, k, beyond, &faces.memo);
   }
   static int rest_facet(const Rest&) { return -1; }
   static const Piece3* rest_piece(const Rest&) { return nullptr; }
