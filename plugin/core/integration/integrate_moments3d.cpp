@@ -37,6 +37,15 @@ inline int frexp_exponent(double x) {
   return e;
 }
 
+// 2^e, exactly std::ldexp(1.0, e): from the exponent field where 2^e is a normal double.
+inline double power_of_two(int e) {
+  if (e < -1022 || e > 1023) return std::ldexp(1.0, e);
+  const std::uint64_t bits = static_cast<std::uint64_t>(e + 1023) << 52;
+  double out;
+  std::memcpy(&out, &bits, sizeof out);
+  return out;
+}
+
 Moments moments(const Piece3& piece) {
   Moments out;
   const int apex = piece.apex();  // the triangulation's: every tetrahedron's first corner
@@ -48,8 +57,8 @@ Moments moments(const Piece3& piece) {
   }
   int e = 0;
   if (size > 0 && std::isfinite(size)) e = frexp_exponent(size);
-  out.scale = std::ldexp(1.0, e);
-  const double shrink = std::ldexp(1.0, -e);
+  out.scale = power_of_two(e);
+  const double shrink = power_of_two(-e);
   double first[3] = {0, 0, 0}, second[3][3] = {};
   piece.for_each_tetrahedron_from(apex, [&](int, int ip, int iq, int ir) {
     const Point3 a = piece.v[ip] - o, b = piece.v[iq] - o, c = piece.v[ir] - o;
@@ -77,6 +86,23 @@ Moments moments(const Piece3& piece) {
 
 }  // namespace
 
+const MomentIntegrator3::SolidTerms& MomentIntegrator3::solid_terms(const MappedTet& mt, const double* sg) {
+  const double(&j)[3][3] = mt.affine_value.jac;
+  SolidTerms& st = solid_terms_;
+  if (st.k == mt.k && std::memcmp(st.jac, j, sizeof st.jac) == 0 && st.det == mt.affine_det) return st;
+  st.k = mt.k;
+  std::memcpy(st.jac, j, sizeof st.jac);
+  const double det = st.det = mt.affine_det;
+  st.mass = integrand_.c2 / det;
+  const double cof[3][3] = {{j[1][1] * j[2][2] - j[1][2] * j[2][1], j[1][2] * j[2][0] - j[1][0] * j[2][2], j[1][0] * j[2][1] - j[1][1] * j[2][0]},
+                            {j[0][2] * j[2][1] - j[0][1] * j[2][2], j[0][0] * j[2][2] - j[0][2] * j[2][0], j[0][1] * j[2][0] - j[0][0] * j[2][1]},
+                            {j[0][1] * j[1][2] - j[0][2] * j[1][1], j[0][2] * j[1][0] - j[0][0] * j[1][2], j[0][0] * j[1][1] - j[0][1] * j[1][0]}};
+  for (int f = 0; f < multiplier_functions_; ++f)
+    for (int a = 0; a < 3; ++a)  // (J^-T g)_a = sum_b (J^-1)_ba g_b, J^-1 = cof^T / det
+      st.gradient_y[3 * f + a] = (cof[a][0] * sg[3 * f] + cof[a][1] * sg[3 * f + 1] + cof[a][2] * sg[3 * f + 2]) / det;
+  return st;
+}
+
 bool MomentIntegrator3::applies(const Integrand3& integrand) {
   const PolynomialBasis3 &fluid = integrand.fluid, &multiplier = integrand.multiplier;
   return fluid.fitted() && multiplier.fitted() && fluid.degree() <= 1 && multiplier.degree() <= 1 &&
@@ -98,15 +124,12 @@ double MomentIntegrator3::integrate(const ClippedImage3& image, int kf, const Pi
   integrand_.fluid.evaluate_affine(kf, integrand_.fluid.to_reference(kf, mo.centroid, image.origin), fv, fg);
   integrand_.multiplier.evaluate_affine(mt.k, mt.affine_reference(mo.centroid, image.origin), sv, sg);
   const double(&j)[3][3] = mt.affine_value.jac;
-  const double det = mt.affine_det, mass = integrand_.c2 / det, stiff = integrand_.c1 * mo.volume / det;
-  // per multiplier function: its gradient in y, J^-T grad_s psi (J^-T = cofactor matrix / det), times 2^e
+  const double det = mt.affine_det, stiff = integrand_.c1 * mo.volume / det;
+  const SolidTerms& st = solid_terms(mt, sg);
+  const double mass = st.mass;
+  // per multiplier function: its gradient in y times 2^e
   double sy[3 * kMaxFunctions];
-  const double cof[3][3] = {{j[1][1] * j[2][2] - j[1][2] * j[2][1], j[1][2] * j[2][0] - j[1][0] * j[2][2], j[1][0] * j[2][1] - j[1][1] * j[2][0]},
-                            {j[0][2] * j[2][1] - j[0][1] * j[2][2], j[0][0] * j[2][2] - j[0][2] * j[2][0], j[0][1] * j[2][0] - j[0][0] * j[2][1]},
-                            {j[0][1] * j[1][2] - j[0][2] * j[1][1], j[0][2] * j[1][0] - j[0][0] * j[1][2], j[0][0] * j[1][1] - j[0][1] * j[1][0]}};
-  for (int f = 0; f < multiplier_functions_; ++f)
-    for (int a = 0; a < 3; ++a)  // (J^-T g)_a = sum_b (J^-1)_ba g_b, J^-1 = cof^T / det
-      sy[3 * f + a] = (cof[a][0] * sg[3 * f] + cof[a][1] * sg[3 * f + 1] + cof[a][2] * sg[3 * f + 2]) / det * mo.scale;
+  for (int f = 0; f < 3 * multiplier_functions_; ++f) sy[f] = st.gradient_y[f] * mo.scale;
   // per fluid function: c2/det (V phi(c), M grad phi / 2^e) and c1 V / det J^T grad phi (the 2^e of the moments'
   // units cancel in the products with sy, each factor a double at any size)
   double fa[kMaxFunctions], fm[3 * kMaxFunctions], fc[3 * kMaxFunctions];

@@ -21,9 +21,22 @@ class MomentIntegrator3 : public PieceIntegrator3 {
   double integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) override;
 
  private:
+  // What a piece's block takes from its solid tetrahedron alone, kept from the last piece: c2 / det and
+  // each multiplier function's gradient in y, J^-T grad_s psi (constant on the tetrahedron: degree <= 1),
+  // for the tetrahedron k with jacobian jac (the same values, bit for bit, as formed for each piece).
+  struct SolidTerms {
+    int k = -1;
+    double jac[3][3] = {}, det = 0, mass = 0;
+    double gradient_y[3 * kMaxFunctions];
+  };
+  // The terms of mt, formed when mt is not the last piece's tetrahedron; sg: its multiplier functions'
+  // gradients in s.
+  const SolidTerms& solid_terms(const MappedTet& mt, const double* sg);
+
   const Integrand3& integrand_;
   CouplingReport& counts_;
   int fluid_functions_, multiplier_functions_;
+  SolidTerms solid_terms_;
 };
 
 }  // namespace dlmfsi
