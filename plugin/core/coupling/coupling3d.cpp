@@ -25,10 +25,13 @@ namespace {
 // TetrahedronIntegrator and scattered to the thread's triplets.
 class Assembler3 {
  public:
+  // in_place (one thread): the blocks summed into the last call's matrix, the entries off its pattern
+  // appended to misses (later: the later rows' entries, none with one thread); else to triplets.
   Assembler3(const Integrand3& integrand, const FluidSide3& fluid, const SolidSide3& solid, const SolidMap3& map,
              const CouplingOptions& opt, const CouplingReport& degrees, FluidSearch3& search,
-             std::vector<Triplet>& triplets)
-      : solid_(solid), map_(map), theirs_(triplets),
+             std::vector<Triplet>& triplets, InPlaceSum* in_place, std::vector<Triplet>* misses,
+             std::vector<Triplet>* later)
+      : solid_(solid), map_(map), theirs_(triplets), in_place_(in_place), misses_(misses), later_(later),
         block_(solid.space().local_dofs(), integrand.pairs.used_multiplier_dofs(), fluid.space().local_dofs(),
                integrand.pairs.used_fluid_dofs()) {
     report.fluid_degree = degrees.fluid_degree;
@@ -40,14 +43,16 @@ class Assembler3 {
   Assembler3& operator=(const Assembler3&) = delete;
 
   void run(const int* first, const int* last) {
-    HeldLists<Triplet> held({&theirs_});
-    for (const int* k = first; k != last; ++k) solid_tetrahedron(*k, held[0]);
+    HeldLists<Triplet> held(in_place_ ? std::vector<std::vector<Triplet>*>{misses_, later_}
+                                      : std::vector<std::vector<Triplet>*>{&theirs_});
+    for (const int* k = first; k != last; ++k) solid_tetrahedron(*k, held.lists());
   }
 
   CouplingReport report;  // this thread's counts (the integrators count in it too)
 
  private:
-  void solid_tetrahedron(int ks, std::vector<Triplet>& triplets) {
+  // lists: this thread's triplets, or (in place) its misses and later entries
+  void solid_tetrahedron(int ks, std::vector<Triplet>* const* lists) {
     MappedTet mt;
     mt.prepare(solid_.mesh(), map_, ks);
     block_.start(solid_.space(), ks);
@@ -60,12 +65,18 @@ class Assembler3 {
       report.worst_outside = outside;
       report.worst_element = ks;
     }
-    block_.scatter(triplets);
+    if (in_place_)
+      block_.scatter(*in_place_, *lists[0], *lists[1]);
+    else
+      block_.scatter(*lists[0]);
   }
 
   const SolidSide3& solid_;
   const SolidMap3& map_;
   std::vector<Triplet>& theirs_;  // the caller's list, held while the thread runs
+  InPlaceSum* const in_place_;
+  std::vector<Triplet>* const misses_;
+  std::vector<Triplet>* const later_;
   LocalBlock block_;
   std::unique_ptr<TetrahedronIntegrator> integrator_;
 };
@@ -154,18 +165,29 @@ const CsrMatrix& CouplingAssembly3::assemble(const FluidSide3& fluid, const Soli
   while (static_cast<int>(threads_.size()) < threads) threads_.push_back(std::make_unique<Thread>());
   if (static_cast<int>(triplets_.size()) < threads) triplets_.resize(threads);
   auto since = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  // One thread sums straight into the last call's matrix (a time loop's pattern changes little), the entries
+  // off its pattern as triplets: the same sums, bit for bit, as compressing the triplets.
+  const int rows = solid.space().dof_count(), cols = fluid.space().dof_count();
+  InPlaceSum* const in_place = threads == 1 ? matrix_.sum_on_last_pattern(rows, cols) : nullptr;
+  if (in_place) {
+    in_place->later_rows().clear();
+    if (misses_.size() < 2) misses_.resize(2);
+    if (later_.empty()) later_.resize(1);
+  }
   total.setup_seconds = since();
   std::vector<std::unique_ptr<Assembler3>> workers;
   run_shares(workers, threads, [&](int t) {
     return std::make_unique<Assembler3>(integrand, fluid, solid, map, opt, total, threads_[t]->on(fluid),
-                                        triplets_[t]);
+                                        triplets_[t], in_place, in_place ? &misses_[0] : nullptr,
+                                        in_place ? &later_[0] : nullptr);
   }, share_in_order(solid, first, last));
   total.pieces_seconds = since() - total.setup_seconds;
   for (auto& w : workers) total.add_counts(w->report);
   check_outside(opt, total);
   // build reads the first `threads` lists (in thread order: the sums of compress's order for any count)
   if (static_cast<int>(triplets_.size()) > threads) triplets_.resize(threads);
-  const CsrMatrix& m = matrix_.build(solid.space().dof_count(), fluid.space().dof_count(), triplets_);
+  const CsrMatrix& m = in_place ? matrix_.build_on_last_pattern(misses_.data(), later_.data(), 1)
+                                : matrix_.build(rows, cols, triplets_);
   check_finite(m, opt);
   total.seconds = since();
   if (report) *report = total;

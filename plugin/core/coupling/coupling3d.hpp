@@ -31,7 +31,8 @@ CsrMatrix assemble_coupling(const FluidSide3& fluid, const SolidSide3& solid, co
                             const CouplingOptions& options, CouplingReport* report = nullptr);
 
 // The same, keeping its memory from one call to the next (a time loop): each thread's search (with its
-// marks over the fluid side), its triplets and the matrix's arrays are reused, grown and never shrunk.
+// marks over the fluid side), its triplets and the matrix's arrays are reused, grown and never shrunk; with
+// one thread the blocks are summed into the last call's matrix where they fall on its pattern.
 class CouplingAssembly3 {
  public:
   CouplingAssembly3();
@@ -47,6 +48,8 @@ class CouplingAssembly3 {
   struct Thread;
   std::vector<std::unique_ptr<Thread>> threads_;
   std::vector<std::vector<Triplet>> triplets_;  // per thread
+  // One thread summing in place: its misses (and those of the later rows), its later rows' entries (none).
+  std::vector<std::vector<Triplet>> misses_, later_;
   CsrBuilder matrix_;
 };
 
