@@ -221,14 +221,28 @@ bool symmetric_share(const std::vector<dlmfsi::Triplet>& t) {
   std::vector<double> largest(rows, 0.0);
   for (const dlmfsi::Triplet& e : t)
     if (e.row != e.col) largest[e.row] = std::max(largest[e.row], std::fabs(e.value));
+  // The entries by row and by column: bucketed (counting sort, linear), each bucket sorted by the other index.
+  std::vector<std::size_t> row_start(static_cast<std::size_t>(rows) + 1, 0), col_start(row_start);
+  for (const dlmfsi::Triplet& e : t) {
+    ++row_start[e.row + 1];
+    ++col_start[e.col + 1];
+  }
+  if (row_start != col_start) return false;   // row i and column i hold as many entries
+  for (int i = 0; i < rows; ++i) row_start[i + 1] += row_start[i];
   std::vector<std::size_t> by_row(t.size()), by_col(t.size());
-  for (std::size_t k = 0; k < t.size(); ++k) by_row[k] = by_col[k] = k;
-  std::sort(by_row.begin(), by_row.end(), [&](std::size_t p, std::size_t q) {
-    return t[p].row != t[q].row ? t[p].row < t[q].row : t[p].col < t[q].col;
-  });
-  std::sort(by_col.begin(), by_col.end(), [&](std::size_t p, std::size_t q) {
-    return t[p].col != t[q].col ? t[p].col < t[q].col : t[p].row < t[q].row;
-  });
+  {
+    std::vector<std::size_t> next_row(row_start.begin(), row_start.end() - 1), next_col(next_row);
+    for (std::size_t k = 0; k < t.size(); ++k) {
+      by_row[next_row[t[k].row]++] = k;
+      by_col[next_col[t[k].col]++] = k;
+    }
+  }
+  for (int i = 0; i < rows; ++i) {
+    std::sort(by_row.begin() + row_start[i], by_row.begin() + row_start[i + 1],
+              [&](std::size_t p, std::size_t q) { return t[p].col < t[q].col; });
+    std::sort(by_col.begin() + row_start[i], by_col.begin() + row_start[i + 1],
+              [&](std::size_t p, std::size_t q) { return t[p].row < t[q].row; });
+  }
   // (i, j) in row order against (j, i) in column order: the same keys in the same order when symmetric
   for (std::size_t k = 0; k < t.size(); ++k) {
     const dlmfsi::Triplet &u = t[by_row[k]], &v = t[by_col[k]];
