@@ -189,13 +189,10 @@ Piece3 assemble(const Candidate* c, int n, Normal&& normal) {
         break;
       }
       const int n0 = __builtin_ctz(found), n1 = __builtin_ctz(second);  // n0 < n1
-      int next = n0;
-      if (previous >= 0) {
-        if (n0 == previous) next = n1;
-        else if (n1 != previous) {
-          ok = false;
-          break;
-        }
+      const int next = n0 == previous ? n1 : n0;  // n0 from the first vertex (previous -1)
+      if (previous >= 0 && n0 != previous && n1 != previous) {
+        ok = false;
+        break;
       }
       previous = current;
       current = next;
@@ -436,8 +433,8 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
     pos_b[j] = neg_b[j] = 0;
     for (int i = 0; i < 4; ++i) {
       const int side = side_b[j][i] = face_side(memo, b_faces.face[j], i, a[i]);
-      if (side > 0) pos_b[j] |= 1u << i;
-      if (side < 0) neg_b[j] |= 1u << i;
+      pos_b[j] |= static_cast<unsigned>(side > 0) << i;
+      neg_b[j] |= static_cast<unsigned>(side < 0) << i;
     }
     if (pos_b[j] == 0) return Piece3{};  // face j's plane separates
     if (neg_b[j] != 0) beyond |= 1u << j;
@@ -448,8 +445,8 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
     pos_a[i] = neg_a[i] = 0;
     for (int j = 0; j < 4; ++j) {
       const int side = side_a[i][j] = vertex_side(memo, a_faces.face[i], i, b[j]);
-      if (side > 0) pos_a[i] |= 1u << j;
-      if (side < 0) neg_a[i] |= 1u << j;
+      pos_a[i] |= static_cast<unsigned>(side > 0) << j;
+      neg_a[i] |= static_cast<unsigned>(side < 0) << j;
     }
     if (pos_a[i] == 0) return Piece3{};
     if (neg_a[i] != 0) b_inside = false;

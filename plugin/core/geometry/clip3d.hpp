@@ -43,7 +43,7 @@ struct Piece3 {
     for (int k = 0; k < faces; ++k) {
       const int s = face_start[k], e = face_start[k + 1];
       bool has_apex = false;
-      for (int i = s; i < e; ++i) has_apex = has_apex || face_index[i] == a;
+      for (int i = s; i < e; ++i) has_apex |= face_index[i] == a;
       if (has_apex) continue;
       for (int i = s + 1; i + 1 < e; ++i) f(a, face_index[s], face_index[i], face_index[i + 1]);
     }

@@ -53,9 +53,7 @@ inline double orient3d_estimate(Point3 a, Point3 b, Point3 c, Point3 d, double& 
 inline int orient3d_filter(Point3 a, Point3 b, Point3 c, Point3 d) {
   double bound;
   const double det = orient3d_estimate(a, b, c, d, bound);
-  if (det > bound) return 1;
-  if (-det > bound) return -1;
-  return 0;
+  return (det > bound) - (-det > bound);  // without branches: the sign is data, not predictable
 }
 
 // det [b - a, c - a, d - a] exactly, rounded (a few ulps; 0 exactly when it is 0), as m 2^e: accurate for
@@ -94,9 +92,7 @@ struct PlaneSide {
     const double ax = std::fabs(w.x), ay = std::fabs(w.y), az = std::fabs(w.z);
     const double permanent = ax * pn.x + ay * pn.y + az * pn.z;
     const double bound = orient3d_bound(permanent, 1 + ax + ay + az);
-    if (det > bound) return 1;
-    if (-det > bound) return -1;
-    return 0;
+    return (det > bound) - (-det > bound);  // without branches: the sign is data, not predictable
   }
 };
 
