@@ -36,7 +36,7 @@ compare: deps build
 # CSV + PNG under $(OUT)/bench; then the rotating disk on 1 and 2 processes (time per step split into
 # assembly, analysis, factorization and solve, peak memory per process) under $(OUT)/bench-mpi when the
 # distributed solve is built, at n = 5 and 30 (3 times) and n = 60 (once, 20 minutes, 7.7 GB peak). About 45 + 80
-# minutes; QUICK=1 for tiny sizes. STAGES="calls sweep core 3d fluid-step mpi" runs some of them (scripts/bench's
+# minutes; QUICK=1 for tiny sizes. STAGES="calls sweep core 3d fluid-step presets mpi" runs some of them (scripts/bench's
 # docstring; calls: the first and next calls against the built-in, $(OUT)/bench/calls.md, about 10 minutes).
 bench: deps build
 	@cmake --build $(BUILD) --target coupling_bench coupling3d_bench -j $(JOBS)
