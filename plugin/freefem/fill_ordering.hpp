@@ -18,9 +18,12 @@ bool have_nested_dissection();
 constexpr int kMinNestedDissection = 20000;
 
 // The pivot order of a square matrix of size n whose entries are at the 1-based positions (rows[k], cols[k])
-// (repeats allowed): METIS_NodeND on the graph of A + A^T without its diagonal, as MUMPS's PERM_IN,
-// position[i] = the 1-based position of unknown i + 1 in the order. Empty without METIS or when METIS fails:
-// the caller lets MUMPS choose. The same pattern gives the same order (METIS's seed is fixed).
+// (repeats allowed), as MUMPS's PERM_IN: position[i] = the 1-based position of unknown i + 1 in the order.
+// On the graph of A + A^T without its diagonal: first a few rounds of low-degree vertices, each round an
+// independent set (no two adjacent) eliminated at once, whose fill is exactly a clique on each one's
+// neighbours, added to the graph left; then METIS_NodeND on that graph for the rest. Empty without METIS or
+// when METIS fails: the caller lets MUMPS choose. The same pattern gives the same order (greedy choices by
+// degree then number; METIS's seed is fixed).
 std::vector<int> nested_dissection(int n, const std::vector<int>& rows, const std::vector<int>& cols);
 
 }  // namespace dlmfsi_ff
