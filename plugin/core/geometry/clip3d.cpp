@@ -71,8 +71,18 @@ inline int crossing_side(int side_s, int side_e, int cut_side_s, int permutation
   return permutation_sign * orient() * cut_side_s;
 }
 
+// lex_less(a, b) with every comparison made (no short-circuit: the outcome is data, not predictable).
+inline bool lex_less_flat(Point3 a, Point3 b) {
+  return (a.x < b.x) | ((a.x == b.x) & ((a.y < b.y) | ((a.y == b.y) & (a.z < b.z))));
+}
+
+// p, q in lexicographic order, by selects rather than a branch.
 inline void sort2(Point3& p, Point3& q) {
-  if (lex_less(q, p)) std::swap(p, q);
+  const bool swap = lex_less_flat(q, p);
+  const Point3 lo{swap ? q.x : p.x, swap ? q.y : p.y, swap ? q.z : p.z};
+  const Point3 hi{swap ? p.x : q.x, swap ? p.y : q.y, swap ? p.z : q.z};
+  p = lo;
+  q = hi;
 }
 
 inline void sort3(Point3& x, Point3& y, Point3& z) {
@@ -140,7 +150,7 @@ Piece3 assemble(const Candidate* c, int n, Normal&& normal) {
   int order[32];
   for (int k = 0; k < n; ++k) order[k] = k;
   for (int k = 1; k < n; ++k)
-    for (int m = k; m > 0 && lex_less(c[order[m]].p(), c[order[m - 1]].p()); --m) std::swap(order[m], order[m - 1]);
+    for (int m = k; m > 0 && lex_less_flat(c[order[m]].p(), c[order[m - 1]].p()); --m) std::swap(order[m], order[m - 1]);
   out.n = std::min(n, Piece3::kMaxVertices);
   for (int k = 0; k < out.n; ++k) {
     out.v[k] = c[order[k]].p();
@@ -190,7 +200,7 @@ Piece3 assemble(const Candidate* c, int n, Normal&& normal) {
       }
       const int n0 = __builtin_ctz(found), n1 = __builtin_ctz(second);  // n0 < n1
       const int next = n0 == previous ? n1 : n0;  // n0 from the first vertex (previous -1)
-      if (previous >= 0 && n0 != previous && n1 != previous) {
+      if ((previous >= 0) & (n0 != previous) & (n1 != previous)) {  // one predictable branch
         ok = false;
         break;
       }
