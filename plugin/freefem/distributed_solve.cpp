@@ -494,6 +494,9 @@ std::string factor_and_solve(Kept& k, bool analyse, bool factor, std::vector<dou
   k.m.icntl[19] = sparse ? 3 : 0;
   err = run(k, 3, "solve");
   k.m.icntl[19] = 0;
+  k.m.rhs_sparse = nullptr;   // the arrays above end with this call
+  k.m.irhs_sparse = k.m.irhs_ptr = nullptr;
+  k.m.nz_rhs = 0;
   c.add_to(k.wall[2], k.cpu[2]);
   if (err.empty()) ++k.count[2];
   return err;
