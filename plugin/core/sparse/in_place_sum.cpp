@@ -36,7 +36,7 @@ bool InPlaceSum::sum_rows(int first, int last, const std::vector<Triplet>* parts
       if (t.row < first || t.row >= last) continue;
       const int* b = m.column.data() + m.start[t.row];
       const int* e = m.column.data() + m.start[t.row + 1];
-      const int* at = std::lower_bound(b, e, t.col);
+      const int* at = find_column(b, e, t.col);
       if (at == e || *at != t.col) return false;  // a new entry: the pattern changed
       const size_t k = static_cast<size_t>(at - m.column.data());
       if (flag_[k] == Flag::set) {
