@@ -24,12 +24,18 @@
 
 namespace {
 
+// An assembled matrix a of another size than rows x cols is refused, named (note: added to the message).
+void check_size(Matrice_Creuse<double>* a, const char* name, int rows, int cols, const char* note = "") {
+  if (a && a->pHM() && (a->N() != rows || a->M() != cols))
+    throw dlmfsi::Error(std::string("patch: ") + name + " is " + std::to_string(a->N()) + " x " +
+                        std::to_string(a->M()) + ", expected " + std::to_string(rows) + " x " + std::to_string(cols) +
+                        note);
+}
+
 // A block's entries (matrix_triplets: a lower half unfolded, NaN refused), its size checked.
 std::vector<dlmfsi::Triplet> block(Matrice_Creuse<double>* a, const char* name, int rows, int cols) {
   std::vector<dlmfsi::Triplet> t = dlmfsi_ff::matrix_triplets(a, std::string("patch: ") + name);
-  if (a->pHM() && (a->N() != rows || a->M() != cols))
-    throw dlmfsi::Error(std::string("patch: ") + name + " is " + std::to_string(a->N()) + " x " +
-                        std::to_string(a->M()) + ", expected " + std::to_string(rows) + " x " + std::to_string(cols));
+  check_size(a, name, rows, cols);
   return t;
 }
 
@@ -78,9 +84,7 @@ AnyType PatchOp::operator()(Stack stack) const {
     std::vector<dlmfsi::Triplet>& t = parts[0];
     Matrice_Creuse<double>* fluid = GetAny<Matrice_Creuse<double>*>((*app)(stack));
     if (nargs[0] && GetAny<bool>((*nargs[0])(stack))) {   // the whole AA: its (Ip, Ip) block
-      if (fluid && fluid->pHM() && (fluid->N() != nz || fluid->M() != nz))
-        throw dlmfsi::Error("patch: AA is " + std::to_string(fluid->N()) + " x " + std::to_string(fluid->M()) +
-                            ", expected " + std::to_string(nz) + " x " + std::to_string(nz) + " (extract=true)");
+      check_size(fluid, "AA", nz, nz, " (extract=true)");
       dlmfsi_ff::visit_entries(fluid, "patch: AA", [&](int i, int j, double v) {
         if (local[i] >= 0 && local[j] >= 0) t.emplace_back(local[i], local[j], v);
       });
