@@ -131,7 +131,13 @@ struct Kept {
   // against 12.98e6, yet 35 CPU s of fluid solves against 42 s over 35 steps), while the nested dissection
   // analyses the preconditioner of 44,580 unknowns in 0.6 s against 1.2 s (lib/solve.idp asks for each).
   // Debian's parallel MUMPS has neither METIS nor Scotch: its own choice is PORD there.
-  bool mumps_order = false;
+  // ordering="amd": MUMPS's approximate minimum degree (ICNTL(7) = 0) at every analysis, no order kept: as cheap
+  // as a kept order's symbolic analysis and never stale. FSI-3's preconditioner (19,503 unknowns, 2D): 0.024 CPU s
+  // and 1.95e6 entries against 0.52 s and 2.07e6 for MUMPS's own choice (Scotch) and 0.25 s and 2.01e6 for the
+  // nested dissection; the falling disk's (44,469): 0.07 s but 3.98e6 entries and 1.54e9 operations against the
+  // dissection's 0.2 s, 3.57e6 and 0.93e9, whose factorization then costs less (lib/solve.idp asks by size).
+  enum class Ordering { dissection, mumps, amd };
+  Ordering order_kind = Ordering::dissection;
   double ordering = -1;   // the ordering MUMPS used (INFOG(7): 1 given, i.e. METIS's; 0 AMD, 2 AMF, 4 PORD, 6 QAMD)
 
   ~Kept() { terminate(); }
@@ -308,13 +314,20 @@ std::string run(Kept& k, int job, const char* phase) {
 
 // The pivot order of the next analysis: METIS's nested dissection of the whole pattern, gathered on the host
 // (fill_ordering.hpp), given to MUMPS (ICNTL(7) = 1); MUMPS's automatic choice (ICNTL(7) = 7) in a build
-// without METIS, for small systems, when METIS gives none, and with ordering="mumps" (Kept::mumps_order),
-// whose order is then kept (keep_order). A matrix of the size of the last one ordered
+// without METIS, for small systems, when METIS gives none, and with ordering="mumps", whose order is then kept
+// (keep_order); MUMPS's AMD (ICNTL(7) = 0) afresh at every analysis with ordering="amd". A matrix of the size of the last one ordered
 // (a new pattern of the same unknowns: the coupling of a solid that moved) takes the kept order instead, and
 // MUMPS only redoes the symbolic factorization, until the factors outgrow the order (kOrderFill, checked after
 // the analysis). Collective; the same for any number of processes (the same pattern).
 void choose_ordering(Kept& k, int rank) {
   static_assert(sizeof(MUMPS_INT) == sizeof(int), "32-bit MUMPS indices");
+  if (k.order_kind == Kept::Ordering::amd) {   // fresh at every analysis, nothing kept
+    k.order_reused = false;
+    k.order.clear();
+    k.m.icntl[6] = 0;
+    k.m.perm_in = nullptr;
+    return;
+  }
   int reuse = rank == 0 && !k.order_stale && k.order_skip == 0 && static_cast<long>(k.order.size()) == k.n ? 1 : 0;
   if (k.order_skip > 0 && !k.order_stale) --k.order_skip;   // a skip counts analyses after the rejected one
   dlmfsi_comm::broadcast(&reuse, 1);
@@ -326,7 +339,7 @@ void choose_ordering(Kept& k, int rank) {
   }
   k.order_stale = false;
   k.order.clear();
-  int own = k.mumps_order ? 1 : 0;
+  int own = k.order_kind == Kept::Ordering::mumps ? 1 : 0;
   dlmfsi_comm::broadcast(&own, 1);
   if (own) {   // MUMPS's choice, kept after the analysis (keep_order)
     k.m.icntl[6] = 7;
@@ -377,7 +390,7 @@ void choose_ordering(Kept& k, int rank) {
 // next patterns of the same size like dlmfsi's (FSI-3's preconditioner, 19,503 unknowns: Scotch's analysis 0.46
 // CPU s against 0.15 s for its factorization).
 void keep_order(Kept& k, int rank) {
-  if (k.order_reused || rank != 0 || !k.order.empty() || !k.m.sym_perm) return;
+  if (k.order_kind == Kept::Ordering::amd || k.order_reused || rank != 0 || !k.order.empty() || !k.m.sym_perm) return;
   k.order.assign(k.m.sym_perm, k.m.sym_perm + k.n);
 }
 
@@ -564,8 +577,9 @@ AnyType SolveOp::operator()(Stack stack) const {
   try {
     if (id < 0 || id >= kMaxId) throw Failure("id=" + std::to_string(id) + " out of range (0 to " + std::to_string(kMaxId - 1) + ")");
     if (!x) throw Failure("the solution array is not defined");
-    if (ordering != "dissection" && ordering != "mumps")
-      throw Failure("ordering=\"" + ordering + "\": expected \"dissection\" (dlmfsi's nested dissection) or \"mumps\"");
+    if (ordering != "dissection" && ordering != "mumps" && ordering != "amd")
+      throw Failure("ordering=\"" + ordering +
+                    "\": expected \"dissection\" (dlmfsi's nested dissection), \"mumps\" (MUMPS's own) or \"amd\"");
     if (solve_only) {
       auto it = kept().find(id);
       if (it == kept().end() || !it->second->factored)
@@ -619,8 +633,11 @@ AnyType SolveOp::operator()(Stack stack) const {
     k.live = true;
     set_controls(k.m);
   }
-  if (k.mumps_order != (ordering == "mumps")) {   // another ordering asked for: the kept order is not it
-    k.mumps_order = ordering == "mumps";
+  const Kept::Ordering kind = ordering == "mumps" ? Kept::Ordering::mumps
+                              : ordering == "amd"  ? Kept::Ordering::amd
+                                                   : Kept::Ordering::dissection;
+  if (k.order_kind != kind) {   // another ordering asked for: the kept order is not it
+    k.order_kind = kind;
     k.order_stale = true;
     k.order_skip = 0;
     k.order_skip_next = 1;
