@@ -22,6 +22,7 @@
 #include <cstdlib>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "geometry/clip3d.hpp"
 #include "coupling/coupling3d.hpp"
@@ -327,6 +328,62 @@ TEST(Property3d, ClipperAgainstExactVolumes) {
   EXPECT_EQ(failures, 0);
 }
 
+// clip_filtered against clip on the same pairs: the same emptiness, vertex count, plane sets (each
+// vertex's, as a sorted list) and beyond; its own vertices within the filtered path's bound of clip's
+// vertex on the same planes (2^-40 of the pair's diameter for a crossing, plus round-off), a valid shape,
+// and its volume against the exact one as above. Some pieces must take the floating-point path (their
+// crossings rounded differently from clip's canonical ones), some the exact one (the degenerate families).
+TEST(Property3d, FilteredClipperAgainstExact) {
+  const long pairs = env_long("DLMFSI_FUZZ3D_PAIRS", 2000);
+  Generator gen(static_cast<std::uint64_t>(env_long("DLMFSI_FUZZ3D_SEED", 20240601)) + 1);
+  long mismatches = 0, bad_shape = 0, rounded = 0, canonical = 0;
+  Worst exact_error, vertex_error;
+  for (long k = 0; k < pairs; ++k) {
+    const Family f = static_cast<Family>(k % kFamilies);
+    Tet a, b;
+    gen.pair(f, a, b);
+    double m, d;
+    test3d::scales(a, b, m, d);
+    unsigned beyond_exact = 0, beyond = 0;
+    TetFaces a_faces;
+    a_faces.set(a.data());
+    const Piece3 e = clip(a.data(), b.data(), beyond_exact);
+    const Piece3 p = clip_filtered(a.data(), a_faces, b.data(), beyond);
+    const std::string where = describe(k, f, a, b);
+    const std::string shape = test3d::piece_shape(p, a, b, 64 * 2.2e-16 * m);
+    if (!shape.empty() && ++bad_shape <= 5) ADD_FAILURE() << shape << ": " << where;
+    bool same = p.n == e.n && (p.n == 0 || beyond == beyond_exact);
+    std::vector<int> planes_p(p.planes, p.planes + p.n), planes_e(e.planes, e.planes + e.n);
+    std::sort(planes_p.begin(), planes_p.end());
+    std::sort(planes_e.begin(), planes_e.end());
+    same = same && planes_p == planes_e;
+    if (!same && ++mismatches <= 5) ADD_FAILURE() << "not clip's piece (vertices, planes or beyond): " << where;
+    if (!same) continue;
+    bool identical = true;
+    for (int i = 0; i < p.n; ++i)
+      for (int j = 0; j < e.n; ++j)
+        if (p.planes[i] == e.planes[j]) {
+          const Point3 g = p.v[i] - e.v[j];
+          const double off = std::max({std::fabs(g.x), std::fabs(g.y), std::fabs(g.z)});
+          identical = identical && off == 0;
+          vertex_error.update(off / (0x1p-40 * d + 64 * 2.2e-16 * m), where);
+        }
+    if (p.n > 0) ++(identical ? canonical : rounded);
+    bool positive;
+    const double exact = ref::exact_intersection_volume(a.data(), b.data(), &positive);
+    exact_error.update(std::fabs(p.volume() - exact) / (m * d * d), where);
+  }
+  std::printf("[ property3d ] filtered clipper: %ld pairs, %ld pieces with rounded crossings, %ld as clip's; worst "
+              "vertex offset / bound %.3g, volume error / (M D^2) %.3g\n",
+              pairs, rounded, canonical, vertex_error.value, exact_error.value);
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_EQ(bad_shape, 0);
+  EXPECT_LE(vertex_error.value, 1) << vertex_error.where;
+  EXPECT_LE(exact_error.value, 1e-13) << exact_error.where;
+  EXPECT_GT(rounded, pairs / 20);
+  EXPECT_GT(canonical, pairs / 20);
+}
+
 // Mesh pairs: a fluid Kuhn box mesh of [-1/2, 1/2]^3 (n^3 cubes, n = 2 or 4; a third jittered inside), and a solid
 // box mesh moved by a rigid motion: aligned (quarter turns about z and shifts by whole cells, exact: faces on
 // faces, vertices on vertices; a third of those shifted again by 2^-50 of a cell along a random direction: faces
@@ -389,10 +446,14 @@ TEST(Property3d, MeshPairsTileAndCouplingKeepsTheVolume) {
       std::vector<std::pair<int, double>> found, brute;
       search.for_each_piece(t, hint, [&](int kf, const Piece3& p) { found.push_back({kf, p.volume()}); });
       std::sort(found.begin(), found.end());
+      // the search's clipper (clip_filtered), so that the pieces compare bit for bit
+      TetFaces t_faces;
+      t_faces.set(t);
       for (int kf = 0; kf < fluid.size(); ++kf) {
         Point3 c[4];
         fluid.corners(kf, c);
-        const Piece3 p = clip(t, c);
+        unsigned beyond;
+        const Piece3 p = clip_filtered(t, t_faces, c, beyond);
         if (p.n > 0) brute.push_back({kf, p.volume()});
       }
       if (found != brute && ++mismatches <= 5)

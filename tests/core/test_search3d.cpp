@@ -27,12 +27,16 @@ std::vector<std::pair<int, double>> by_search(FluidSearch3& search, const Point3
   return out;
 }
 
+// Every fluid tetrahedron clipped by the search's clipper (clip_filtered: the same pieces bit for bit).
 std::vector<std::pair<int, double>> by_brute_force(const Mesh3& fluid, const Point3 t[4]) {
   std::vector<std::pair<int, double>> out;
+  TetFaces t_faces;
+  t_faces.set(t);
   for (int k = 0; k < fluid.size(); ++k) {
     Point3 c[4];
     fluid.corners(k, c);
-    const Piece3 p = clip(t, c);
+    unsigned beyond;
+    const Piece3 p = clip_filtered(t, t_faces, c, beyond);
     if (p.n > 0) out.push_back({k, p.volume()});
   }
   return out;

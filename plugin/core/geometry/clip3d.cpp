@@ -318,6 +318,20 @@ Piece3 clip(const Point3 a[4], const Point3 b[4], unsigned& beyond) {
 
 namespace {
 
+// A whole tetrahedron t (a: shift 0, b: 4): its own vertices, face j the other three (no sorting, no walk).
+Piece3 whole(const Point3 t[4], int shift) {
+  Piece3 out;
+  out.n = 4;
+  out.faces = 4;
+  for (int i = 0; i < 4; ++i) {
+    out.v[i] = t[i];
+    out.planes[i] = static_cast<unsigned char>(faces_at_vertex(i) << shift);
+    for (int k = 0; k < 3; ++k) out.face_index[3 * i + k] = static_cast<unsigned char>(kFace[i][k]);
+    out.face_start[i + 1] = 3 * (i + 1);
+  }
+  return out;
+}
+
 // crossing(), through memo when there is one: tags 0-3 a's face i crossed by b's edge [p, q]; 4-9 a's edge
 // e crossing b's face (x, y, z); 10-15 a's edge e crossing b's edge [x, y]. b's points in the key sorted
 // (crossing() is a function of the sets).
@@ -422,19 +436,6 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
   auto normal = [&](int plane) { return plane < 4 ? face_normal(a, plane) : face_normal(b, plane - 4); };
   Candidate c[32];
   int n = 0;
-  // A whole tetrahedron: its own vertices, face j the other three (no sorting, no walk).
-  auto whole = [](const Point3 t[4], int shift) {
-    Piece3 out;
-    out.n = 4;
-    out.faces = 4;
-    for (int i = 0; i < 4; ++i) {
-      out.v[i] = t[i];
-      out.planes[i] = static_cast<unsigned char>(faces_at_vertex(i) << shift);
-      for (int k = 0; k < 3; ++k) out.face_index[3 * i + k] = static_cast<unsigned char>(kFace[i][k]);
-      out.face_start[i + 1] = 3 * (i + 1);
-    }
-    return out;
-  };
   // pos_b[j], neg_b[j]: the vertices of a strictly on the inner, outer side of b's face j (bit i); pos_a,
   // neg_a the same for b's vertices and a's faces; side_b[j][i], side_a[i][j] the same signs (+1, 0, -1) as a table.
   unsigned pos_b[4], neg_b[4], pos_a[4], neg_a[4];
@@ -553,6 +554,189 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
         for (int k = 0; k < n; ++k) c[k].planes &= ~(1u << (4 + j));
   }
   return assemble(c, n, normal);
+}
+
+namespace {
+
+// A vertex of the polytope that clip_filtered cuts down from a, one face plane of b at a time. While every
+// side is certified the polytope is simple: each vertex lies on exactly three of its face planes and has
+// three neighbours, listed in the same rotational sense at every vertex, so that a face is walked by
+// turning the same way at each vertex: arriving at w from u = w.nb[i], go on to w.nb[(i + 1) % 3].
+struct SimpleVertex {
+  Point3 p;
+  double d[4], e[4];  // orient3d values against b's face planes (TetFaces' sign convention), error bounds
+  int nb[3];
+  unsigned planes;  // as Piece3::planes
+};
+
+// a's vertex i's neighbours in the sense det [n0 - v, n1 - v, n2 - v] > 0 (a positively oriented).
+constexpr int kTetNeighbours[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+// The largest error bound, relative to |d(u) - d(w)| on the edge being cut, for which the crossing is built
+// in floating point: its position along the edge is then within 2^-40 of the edge's length.
+constexpr double kMaxRelativeBound = 0x1p-40;
+constexpr double kEpsilon = 0x1p-53;
+
+class SimplePolytope {
+ public:
+  static constexpr int kCapacity = 32;
+  enum Outcome { kKept, kEmpty, kUncertain };
+
+  // a's four vertices with their values against b's planes.
+  void start(const Point3 a[4], const double d[4][4], const double e[4][4]) {
+    n_ = 4;
+    for (int i = 0; i < 4; ++i) {
+      SimpleVertex& v = v_[i];
+      v.p = a[i];
+      for (int j = 0; j < 4; ++j) {
+        v.d[j] = d[j][i];
+        v.e[j] = e[j][i];
+      }
+      for (int s = 0; s < 3; ++s) v.nb[s] = kTetNeighbours[i][s];
+      v.planes = faces_at_vertex(i);
+    }
+  }
+
+  // Keeps the part on the inner side of b's plane j (d > 0). Each value's sign is certified (|d| > e) or the
+  // outcome is kUncertain. A crossing w = u + t (x - u), t = d(u) / (d(u) - d(x)), of an edge from u inside
+  // to x outside gets, for the later planes o, d_o(w) = d_o(u) + t (d_o(x) - d_o(u)) (orient3d is affine in
+  // its last point, so the exact crossing's value is this combination with the exact t), with the bound
+  // max(e_o(u), e_o(x)) + dt |d_o(x) - d_o(u)| + 4 eps (|d_o(u)| + |d_o(x)|), dt >= |t - t_exact|:
+  // |t - t_exact| <= (e(u) + e(x)) / (d(u) - d(x)) to first order (both ends' values within their bounds),
+  // plus 3 eps for t's own rounding.
+  Outcome cut(int j) {
+    unsigned outside = 0;
+    bool certain = true;
+    for (int k = 0; k < n_; ++k) {
+      certain &= std::fabs(v_[k].d[j]) > v_[k].e[j];
+      outside |= static_cast<unsigned>(v_[k].d[j] < 0) << k;
+    }
+    if (!certain) return kUncertain;
+    if (outside == 0) return kKept;
+    if (outside == (1u << n_) - 1) return kEmpty;
+    const int old = n_;
+    for (int k = 0; k < old; ++k) {
+      if (outside >> k & 1u) continue;
+      for (int s = 0; s < 3; ++s) {
+        const int x = v_[k].nb[s];
+        if (!(outside >> x & 1u)) continue;
+        if (n_ == kCapacity) return kUncertain;
+        const SimpleVertex &u = v_[k], &o = v_[x];
+        const double du = u.d[j], dx = o.d[j], span = du - dx, error = u.e[j] + o.e[j];
+        if (!(error <= kMaxRelativeBound * span)) return kUncertain;
+        const double t = du / span, dt = error / (span - error) + 3 * kEpsilon;
+        SimpleVertex& w = v_[n_];
+        w.p = between(u.p, o.p, du, dx);
+        for (int m = j + 1; m < 4; ++m) {
+          const double change = o.d[m] - u.d[m];
+          w.d[m] = u.d[m] + t * change;
+          w.e[m] = (std::max(u.e[m], o.e[m]) + dt * std::fabs(change) +
+                    4 * kEpsilon * (std::fabs(u.d[m]) + std::fabs(o.d[m]))) * (1 + 0x1p-40);
+        }
+        w.planes = (u.planes & o.planes) | 1u << (4 + j);
+        w.nb[0] = k;
+        v_[k].nb[s] = n_++;
+      }
+    }
+    // The cap: from each new vertex w, walk the face on one side of its edge into the kept part until the
+    // next new vertex c; w and c are neighbours on the cap (w.nb[2] = c, c.nb[1] = w).
+    for (int w = old; w < n_; ++w) {
+      int previous = w, current = v_[w].nb[0];
+      while (current < old) {
+        const int* nb = v_[current].nb;
+        const int i = nb[0] == previous ? 0 : (nb[1] == previous ? 1 : 2);
+        previous = current;
+        current = nb[i == 2 ? 0 : i + 1];
+      }
+      v_[w].nb[2] = current;
+      v_[current].nb[1] = w;
+    }
+    // Drop the vertices outside, renumbering the rest in order.
+    int index[kCapacity], kept = 0;
+    for (int k = 0; k < n_; ++k) {
+      index[k] = kept;
+      if (k < old && (outside >> k & 1u)) continue;
+      if (kept != k) v_[kept] = v_[k];
+      ++kept;
+    }
+    for (int k = 0; k < kept; ++k)
+      for (int s = 0; s < 3; ++s) v_[k].nb[s] = index[v_[k].nb[s]];
+    n_ = kept;
+    return kKept;
+  }
+
+  // The piece: a vertex on three of b's planes is b's vertex (the fourth's), exactly; each face is walked
+  // once from each of its directed edges' first. False when the piece does not fit Piece3.
+  bool to_piece(const Point3 b[4], Piece3& out) const {
+    if (n_ > Piece3::kMaxVertices) return false;
+    out.n = n_;
+    for (int k = 0; k < n_; ++k) {
+      const unsigned of_b = v_[k].planes >> 4;
+      out.v[k] = of_b == 0xEu ? b[0] : of_b == 0xDu ? b[1] : of_b == 0xBu ? b[2] : of_b == 0x7u ? b[3] : v_[k].p;
+      out.planes[k] = static_cast<unsigned char>(v_[k].planes);
+    }
+    unsigned walked[kCapacity] = {};  // bit s: the edge from k to its neighbour s
+    int used = 0;
+    out.faces = 0;
+    for (int k = 0; k < n_; ++k)
+      for (int s = 0; s < 3; ++s) {
+        if (walked[k] >> s & 1u) continue;
+        if (out.faces == Piece3::kMaxFaces) return false;
+        int current = k, slot = s;
+        do {
+          if (used == Piece3::kMaxFaceIndices) return false;
+          out.face_index[used++] = static_cast<unsigned char>(current);
+          walked[current] |= 1u << slot;
+          const int next = v_[current].nb[slot];
+          const int* nb = v_[next].nb;
+          const int i = nb[0] == current ? 0 : (nb[1] == current ? 1 : 2);
+          current = next;
+          slot = i == 2 ? 0 : i + 1;
+        } while (!(walked[current] >> slot & 1u));
+        out.face_start[++out.faces] = used;
+      }
+    out.exact = true;
+    return true;
+  }
+
+ private:
+  SimpleVertex v_[kCapacity];
+  int n_ = 0;
+};
+
+}  // namespace
+
+Piece3 clip_filtered(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsigned& beyond,
+                     ClipMemo3* memo) {
+  TetFaces b_faces;
+  b_faces.set(b);
+  double d[4][4], e[4][4];
+  bool certain = true;
+  unsigned inner = 0, outer = 0;  // bit 4 j + i: a's vertex i strictly inside, outside b's face j
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      d[j][i] = b_faces.face[j].estimate(a[i], e[j][i]);
+      certain &= std::fabs(d[j][i]) > e[j][i];
+      inner |= static_cast<unsigned>(d[j][i] > e[j][i]) << (4 * j + i);
+      outer |= static_cast<unsigned>(-d[j][i] > e[j][i]) << (4 * j + i);
+    }
+  if (!certain) return clip(a, a_faces, b, beyond, memo);
+  beyond = 0;
+  for (int j = 0; j < 4; ++j) {
+    if ((inner >> (4 * j) & 0xFu) == 0) return Piece3{};  // face j's plane separates
+    beyond |= static_cast<unsigned>((outer >> (4 * j) & 0xFu) != 0) << j;
+  }
+  if (beyond == 0) return whole(a, 0);  // a in closed b
+  SimplePolytope polytope;
+  polytope.start(a, d, e);
+  for (int j = 0; j < 4; ++j) {
+    if (!(beyond >> j & 1u)) continue;
+    const SimplePolytope::Outcome o = polytope.cut(j);
+    if (o == SimplePolytope::kEmpty) return Piece3{};
+    if (o == SimplePolytope::kUncertain) return clip(a, a_faces, b, beyond, memo);
+  }
+  Piece3 out;
+  if (!polytope.to_piece(b, out)) return clip(a, a_faces, b, beyond, memo);
+  return out;
 }
 
 }  // namespace dlmfsi

@@ -180,6 +180,18 @@ Piece3 clip(const Point3 a[4], const Point3 b[4], unsigned& beyond);
 Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsigned& beyond,
             ClipMemo3* memo = nullptr);
 
+// The same piece (and beyond), found first in floating point: a cut by b's face planes one after another,
+// a simple polytope whose vertices keep their three neighbours, each vertex's side of each plane taken
+// from its orient3d value and a bound on that value's error (the filter's for a's vertices; for a crossing,
+// interpolated from its edge's ends with their bounds carried). When every side is certified (no value
+// within its bound: no vertex on or within round-off of a plane), the piece's vertices, their plane sets
+// and its faces are those of the exact piece, and its crossings are rounded, within 2^-40 of their edge's
+// length along it, but not canonical (a neighbour sharing the face may get them a few ulps apart; b's
+// vertices are exact). Otherwise, and for a in b, it is clip()'s piece: coincident and touching tetrahedra
+// (shared faces, edges, vertices) are decided exactly as there.
+Piece3 clip_filtered(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsigned& beyond,
+                     ClipMemo3* memo = nullptr);
+
 // out = t - o for the n points of t when every coordinate's subtraction is exact (its TwoSum error term is
 // zero); false otherwise. An exact translation changes no orient3d sign and no lexicographic order, so clip
 // decides everything on translated tetrahedra as on the originals; only the crossings, constructed from the

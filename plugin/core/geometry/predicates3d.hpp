@@ -87,12 +87,18 @@ struct PlaneSide {
   }
   // The filter alone: the sign when the floating-point estimate decides it, else 0 (then sign() is exact).
   int filter(Point3 x) const {
+    double bound;
+    const double det = estimate(x, bound);
+    return (det > bound) - (-det > bound);  // without branches: the sign is data, not predictable
+  }
+  // orient3d(p, q, r, x) in floating point and the bound on its error (orient3d_estimate's, the same value).
+  double estimate(Point3 x, double& bound) const {
     const Point3 w = x - p;
     const double det = w.x * n.x + w.y * n.y + w.z * n.z;
     const double ax = std::fabs(w.x), ay = std::fabs(w.y), az = std::fabs(w.z);
     const double permanent = ax * pn.x + ay * pn.y + az * pn.z;
-    const double bound = orient3d_bound(permanent, 1 + ax + ay + az);
-    return (det > bound) - (-det > bound);  // without branches: the sign is data, not predictable
+    bound = orient3d_bound(permanent, 1 + ax + ay + az);
+    return det;
   }
 };
 

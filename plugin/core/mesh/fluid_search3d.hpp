@@ -43,11 +43,11 @@ struct Tetrahedra {
     }
   };
   static Piece3 clip(const Point3 t[4], const Faces& faces, const Point3 k[4], unsigned& beyond) {
-    return dlmfsi::clip(t, faces.planes, k, beyond, &faces.memo);
+    return dlmfsi::clip_filtered(t, faces.planes, k, beyond, &faces.memo);
   }
   struct Rest {};  // the clipper tells nothing of t beyond a face
   static Piece3 clip(const Point3 t[4], const Faces& faces, const Point3 k[4], unsigned& beyond, Rest&) {
-    return dlmfsi::clip(t, faces.planes, k, beyond, &faces.memo);
+    return dlmfsi::clip_filtered(t, faces.planes, k, beyond, &faces.memo);
   }
   static int rest_facet(const Rest&) { return -1; }
   static const Piece3* rest_piece(const Rest&) { return nullptr; }
