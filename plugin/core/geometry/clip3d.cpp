@@ -563,10 +563,11 @@ namespace {
 // three neighbours, listed in the same rotational sense at every vertex, so that a face is walked by
 // turning the same way at each vertex: arriving at w from u = w.nb[i], go on to w.nb[(i + 1) % 3].
 struct SimpleVertex {
-  Point3 p;
+  double x, y, z;     // plain doubles (a Point3 is zero-initialized): the polytope's 32 are not cleared
   double d[4], e[4];  // orient3d values against b's face planes (TetFaces' sign convention), error bounds
   int nb[3];
   unsigned planes;  // as Piece3::planes
+  Point3 p() const { return {x, y, z}; }
 };
 
 // a's vertex i's neighbours in the sense det [n0 - v, n1 - v, n2 - v] > 0 (a positively oriented).
@@ -586,7 +587,9 @@ class SimplePolytope {
     n_ = 4;
     for (int i = 0; i < 4; ++i) {
       SimpleVertex& v = v_[i];
-      v.p = a[i];
+      v.x = a[i].x;
+      v.y = a[i].y;
+      v.z = a[i].z;
       for (int j = 0; j < 4; ++j) {
         v.d[j] = d[j][i];
         v.e[j] = e[j][i];
@@ -594,6 +597,7 @@ class SimplePolytope {
       for (int s = 0; s < 3; ++s) v.nb[s] = kTetNeighbours[i][s];
       v.planes = faces_at_vertex(i);
     }
+    live_ = 0xFu;
   }
 
   // Keeps the part on the inner side of b's plane j (d > 0). Each value's sign is certified (|d| > e) or the
@@ -606,16 +610,17 @@ class SimplePolytope {
   Outcome cut(int j) {
     unsigned outside = 0;
     bool certain = true;
-    for (int k = 0; k < n_; ++k) {
+    for (unsigned live = live_; live != 0; live &= live - 1) {
+      const int k = __builtin_ctz(live);
       certain &= std::fabs(v_[k].d[j]) > v_[k].e[j];
       outside |= static_cast<unsigned>(v_[k].d[j] < 0) << k;
     }
     if (!certain) return kUncertain;
     if (outside == 0) return kKept;
-    if (outside == (1u << n_) - 1) return kEmpty;
+    if (outside == live_) return kEmpty;
     const int old = n_;
-    for (int k = 0; k < old; ++k) {
-      if (outside >> k & 1u) continue;
+    for (unsigned inside = live_ & ~outside; inside != 0; inside &= inside - 1) {
+      const int k = __builtin_ctz(inside);
       for (int s = 0; s < 3; ++s) {
         const int x = v_[k].nb[s];
         if (!(outside >> x & 1u)) continue;
@@ -625,7 +630,10 @@ class SimplePolytope {
         if (!(error <= kMaxRelativeBound * span)) return kUncertain;
         const double t = du / span, dt = error / (span - error) + 3 * kEpsilon;
         SimpleVertex& w = v_[n_];
-        w.p = between(u.p, o.p, du, dx);
+        const Point3 crossing = between(u.p(), o.p(), du, dx);
+        w.x = crossing.x;
+        w.y = crossing.y;
+        w.z = crossing.z;
         for (int m = j + 1; m < 4; ++m) {
           const double change = o.d[m] - u.d[m];
           w.d[m] = u.d[m] + t * change;
@@ -650,41 +658,37 @@ class SimplePolytope {
       v_[w].nb[2] = current;
       v_[current].nb[1] = w;
     }
-    // Drop the vertices outside, renumbering the rest in order.
-    int index[kCapacity], kept = 0;
-    for (int k = 0; k < n_; ++k) {
-      index[k] = kept;
-      if (k < old && (outside >> k & 1u)) continue;
-      if (kept != k) v_[kept] = v_[k];
-      ++kept;
-    }
-    for (int k = 0; k < kept; ++k)
-      for (int s = 0; s < 3; ++s) v_[k].nb[s] = index[v_[k].nb[s]];
-    n_ = kept;
+    // The vertices outside stay in the buffer, dead (at most 4 + 4 + 5 + 6 + 7 = 26 in all: a cut adds one
+    // vertex per face it crosses).
+    live_ = (live_ & ~outside) | (((1u << n_) - 1) & ~((1u << old) - 1));
     return kKept;
   }
 
   // The piece: a vertex on three of b's planes is b's vertex (the fourth's), exactly; each face is walked
   // once from each of its directed edges' first. False when the piece does not fit Piece3.
   bool to_piece(const Point3 b[4], Piece3& out) const {
-    if (n_ > Piece3::kMaxVertices) return false;
-    out.n = n_;
-    for (int k = 0; k < n_; ++k) {
+    // the live vertices renumbered in order
+    int index[kCapacity], n = 0;
+    for (unsigned live = live_; live != 0; live &= live - 1) {
+      const int k = __builtin_ctz(live);
+      if (n == Piece3::kMaxVertices) return false;
+      index[k] = n;
       const unsigned of_b = v_[k].planes >> 4;
-      out.v[k] = of_b == 0xEu ? b[0] : of_b == 0xDu ? b[1] : of_b == 0xBu ? b[2] : of_b == 0x7u ? b[3] : v_[k].p;
-      out.planes[k] = static_cast<unsigned char>(v_[k].planes);
+      out.v[n] = of_b == 0xEu ? b[0] : of_b == 0xDu ? b[1] : of_b == 0xBu ? b[2] : of_b == 0x7u ? b[3] : v_[k].p();
+      out.planes[n++] = static_cast<unsigned char>(v_[k].planes);
     }
+    out.n = n;
     unsigned walked[kCapacity] = {};  // bit s: the edge from k to its neighbour s
     int used = 0;
     out.faces = 0;
-    for (int k = 0; k < n_; ++k)
-      for (int s = 0; s < 3; ++s) {
+    for (unsigned live = live_; live != 0; live &= live - 1)
+      for (int k = __builtin_ctz(live), s = 0; s < 3; ++s) {
         if (walked[k] >> s & 1u) continue;
         if (out.faces == Piece3::kMaxFaces) return false;
         int current = k, slot = s;
         do {
           if (used == Piece3::kMaxFaceIndices) return false;
-          out.face_index[used++] = static_cast<unsigned char>(current);
+          out.face_index[used++] = static_cast<unsigned char>(index[current]);
           walked[current] |= 1u << slot;
           const int next = v_[current].nb[slot];
           const int* nb = v_[next].nb;
@@ -700,7 +704,8 @@ class SimplePolytope {
 
  private:
   SimpleVertex v_[kCapacity];
-  int n_ = 0;
+  int n_ = 0;         // vertices made, live or not
+  unsigned live_ = 0;  // bit k: vertex k is a vertex of the polytope
 };
 
 }  // namespace

@@ -133,15 +133,14 @@ double MomentIntegrator3::integrate(const ClippedImage3& image, int kf, const Pi
   // per fluid function: c2/det (V phi(c), M grad phi / 2^e) and c1 V / det J^T grad phi (the 2^e of the moments'
   // units cancel in the products with sy, each factor a double at any size)
   double fa[kMaxFunctions], fm[3 * kMaxFunctions], fc[3 * kMaxFunctions];
+  const bool gradients = integrand_.c1 != 0;
   for (int f = 0; f < fluid_functions_; ++f) {
     const double* g = fg + 3 * f;
     fa[f] = mass * mo.volume * fv[f];
-    for (int a = 0; a < 3; ++a) {
-      fm[3 * f + a] = mass * (mo.m[a][0] * g[0] + mo.m[a][1] * g[1] + mo.m[a][2] * g[2]) * mo.scale;
-      fc[3 * f + a] = stiff * (g[0] * j[0][a] + g[1] * j[1][a] + g[2] * j[2][a]);
-    }
+    for (int a = 0; a < 3; ++a) fm[3 * f + a] = mass * (mo.m[a][0] * g[0] + mo.m[a][1] * g[1] + mo.m[a][2] * g[2]) * mo.scale;
+    if (gradients)
+      for (int a = 0; a < 3; ++a) fc[3 * f + a] = stiff * (g[0] * j[0][a] + g[1] * j[1][a] + g[2] * j[2][a]);
   }
-  const bool gradients = integrand_.c1 != 0;
   const ComponentPairs& pairs = integrand_.pairs;
   for (size_t p = 0; p < pairs.size(); ++p) {
     const ComponentPair& pair = pairs[p];
