@@ -7,7 +7,8 @@
 //   coupling_bench [-fluid F.msh] [-solid S.msh] [fluid cells per side = 100] [solid cells per side = 235]
 //                  [calls = 5] [threads = 1]
 // -fluid, -solid: FreeFEM meshes (savemesh) instead of the grids, e.g. those of edp/bench/coupling_size.edp
-// -savemeshes P; the map is the same turn about (1,1).
+// -savemeshes P; the map is the same turn about (1,1). -dump FILE: every call's matrix written to FILE (rows,
+// cols, then each row's columns and values, values in hexadecimal floating point: exact), to compare builds.
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -39,12 +40,18 @@ long minor_faults() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string fluid_file, solid_file;
+  std::string fluid_file, solid_file, dump_file;
   std::vector<char*> args;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if ((a == "-fluid" || a == "-solid") && i + 1 < argc) (a == "-fluid" ? fluid_file : solid_file) = argv[++i];
+    else if (a == "-dump" && i + 1 < argc) dump_file = argv[++i];
     else args.push_back(argv[i]);
+  }
+  std::FILE* dump = dump_file.empty() ? nullptr : std::fopen(dump_file.c_str(), "w");
+  if (!dump_file.empty() && !dump) {
+    std::fprintf(stderr, "coupling_bench: cannot write %s\n", dump_file.c_str());
+    return 1;
   }
   const size_t given = args.size();
   const int nf = given > 0 ? std::atoi(args[0]) : 100;
@@ -109,7 +116,16 @@ int main(int argc, char** argv) {
                 report.seconds - report.setup_seconds - report.pieces_seconds);
     sum = 0;
     for (double v : b.value) sum += v;
+    if (dump) {
+      std::fprintf(dump, "call %d: %d x %d, %zu entries\n", call + 1, b.rows, b.cols, b.value.size());
+      for (int i = 0; i < b.rows; ++i) {
+        std::fprintf(dump, "%d:", i);
+        for (int e = b.start[i]; e < b.start[i + 1]; ++e) std::fprintf(dump, " %d %a", b.column[e], b.value[e]);
+        std::fprintf(dump, "\n");
+      }
+    }
   }
+  if (dump) std::fclose(dump);
   std::printf("%s\n", report.summary().c_str());
   const size_t steady = calls >= 3 ? 2 : 1;
   std::printf("fluid %d solid %d threads %d: prepare sides %.4f s; first call %.4f s wall (%.4f CPU)", fluid.size(),

@@ -310,6 +310,85 @@ TEST(Sparse, SumOnLastPatternWithThreadsIsCompressBitForBit) {
   }
 }
 
+// Rows summed as the entries come (RowSum) give compress's matrix of the same triplets in the same order,
+// bit for bit: rows of one chunk, of several chunks and rows spilled past RowSum::kRowRoom columns (a solid
+// much coarser than the fluid), values of mixed sizes and signs so that the order of a sum shows in its
+// bits; entries given one at a time and a row's few at once; a second build on the same builder.
+TEST(Sparse, SumByRowsIsCompressBitForBit) {
+  const int rows = 90, cols = 400;
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> mantissa(-1, 1);
+  for (int round = 0; round < 2; ++round) {
+    SCOPED_TRACE(round);
+    std::vector<Triplet> list;
+    for (int e = 0; e < 20000; ++e) {
+      const int i = static_cast<int>(rng() % rows);
+      // row i's columns: up to 3, 6, 12, 30 or 400 (> kRowRoom) distinct ones by i % 5
+      const int spread[5] = {3, 6, 12, 30, cols};
+      list.push_back({i, static_cast<int>((i * 13 + rng() % spread[i % 5]) % cols),
+                      std::ldexp(mantissa(rng), static_cast<int>(rng() % 60) - 30)});
+    }
+    CsrBuilder builder;
+    RowSum* sum = builder.sum_by_rows(rows, cols, 1);
+    for (size_t e = 0; e < list.size();) {
+      // runs of entries of one row with distinct columns go in together, the others one by one
+      size_t end = e + 1;
+      while (end < list.size() && end - e < 5 && list[end].row == list[e].row &&
+             std::none_of(list.begin() + static_cast<long>(e), list.begin() + static_cast<long>(end),
+                          [&](const Triplet& x) { return x.col == list[end].col; }))
+        ++end;
+      std::vector<int> c;
+      std::vector<double> v;
+      for (size_t k = e; k < end; ++k) {
+        c.push_back(list[k].col);
+        v.push_back(list[k].value);
+      }
+      sum->add_row(0, list[e].row, c.data(), v.data(), static_cast<int>(c.size()));
+      e = end;
+    }
+    same_bits(builder.build_summed_rows(), compress(rows, cols, {list}));
+    EXPECT_FALSE(builder.kept_pattern());
+    // a row's entries in rng order within the row: sorting them by row keeps each row's order
+    std::stable_sort(list.begin(), list.end(), [](const Triplet& a, const Triplet& b) { return a.row < b.row; });
+    sum = builder.sum_by_rows(rows, cols, 1);
+    for (const Triplet& x : list) sum->add(0, x.row, x.col, x.value);
+    same_bits(builder.build_summed_rows(), compress(rows, cols, {list}));
+  }
+}
+
+// With two writers: each adds to its own rows, the rows both meet come as triplets after them (in writer
+// order); compress's matrix of the writers' triplets in order, bit for bit, with spilled rows on both.
+TEST(Sparse, SumByRowsWithTwoWritersIsCompressBitForBit) {
+  const int rows = 120, cols = 300;
+  std::mt19937_64 rng(43);
+  std::uniform_real_distribution<double> mantissa(-1, 1);
+  // writer 0 adds to rows 0 .. 69, writer 1 to rows 50 .. 119: rows 50 .. 69 are met by both
+  auto writer_triplets = [&](int first_row, int last_row) {
+    std::vector<Triplet> out;
+    for (int e = 0; e < 6000; ++e) {
+      const int i = first_row + static_cast<int>(rng() % (last_row - first_row));
+      const int spread = i % 3 == 0 ? 100 : 7;  // every third row spilled
+      out.push_back({i, (i * 7 + static_cast<int>(rng() % spread)) % cols,
+                     std::ldexp(mantissa(rng), static_cast<int>(rng() % 50) - 25)});
+    }
+    return out;
+  };
+  const std::vector<std::vector<Triplet>> writers = {writer_triplets(0, 70), writer_triplets(50, 120)};
+  CsrBuilder builder;
+  RowSum* sum = builder.sum_by_rows(rows, cols, 2);
+  sum->later_rows().assign(rows, 0);
+  for (int i = 50; i < 70; ++i) sum->later_rows()[i] = 1;
+  std::vector<std::vector<Triplet>> later(2);
+  for (int w = 0; w < 2; ++w)
+    for (const Triplet& x : writers[w]) {
+      if (sum->later(x.row))
+        later[w].push_back(x);
+      else
+        sum->add(w, x.row, x.col, x.value);
+    }
+  same_bits(builder.build_summed_rows(later.data(), 2), compress(rows, cols, writers));
+}
+
 TEST(RowOrder, SortByRowsIsTheLexicographicOrderOfTheEntries) {
   // Random distinct (row, column) entries in random order, 0- and 1-based, against std::sort of the keys.
   std::mt19937 rng(7);

@@ -23,17 +23,15 @@ namespace dlmfsi {
 namespace {
 
 // One thread's share of one call: each solid triangle's block, integrated by the chosen TriangleIntegrator
-// and scattered to the thread's triplets, one list per row range of the compression (triplets[r]); or,
-// with in_place, summed into the last call's matrix, the entries off its pattern appended to misses and
-// those of the rows summed later (InPlaceSum::later) to later.
+// and summed into its rows (a first call: row_sum, as writer t) or, with in_place, into the last call's
+// matrix, the entries off its pattern appended to misses; either way the entries of the rows summed after
+// the threads (RowSum::later, InPlaceSum::later) are appended to later.
 class Assembler {
  public:
   Assembler(const Integrand& integrand, const FluidSide& fluid, const SolidSide& solid, const SolidMap& map,
-            const CouplingOptions& options, const CouplingReport& degrees, FluidSearch& search,
-            std::vector<std::vector<Triplet>*> triplets, const RowRanges& ranges, InPlaceSum* in_place,
-            std::vector<Triplet>* misses, std::vector<Triplet>* later)
-      : solid_(solid), map_(map), triplets_(std::move(triplets)), ranges_(ranges), in_place_(in_place),
-        misses_(misses), later_(later),
+            const CouplingOptions& options, const CouplingReport& degrees, FluidSearch& search, int t,
+            RowSum* row_sum, InPlaceSum* in_place, std::vector<Triplet>* misses, std::vector<Triplet>* later)
+      : solid_(solid), map_(map), t_(t), row_sum_(row_sum), in_place_(in_place), misses_(misses), later_(later),
         block_(solid.space().local_dofs(), integrand.pairs.used_multiplier_dofs(), fluid.space().local_dofs(),
                integrand.pairs.used_fluid_dofs()) {
     report.fluid_degree = degrees.fluid_degree;
@@ -45,11 +43,8 @@ class Assembler {
   Assembler& operator=(const Assembler&) = delete;
 
   void run(const int* first, const int* last) {
-    HeldLists<Triplet> held(in_place_ ? std::vector<std::vector<Triplet>*>{misses_, later_} : triplets_);
-    // about two fluid triangles' columns per solid triangle: room for most runs without regrowing
-    const size_t room = static_cast<size_t>(last - first) * 2 * block_.used_entries_per_fluid_element();
-    if (!in_place_)
-      for (size_t i = 0; i < held.size(); ++i) held[i].reserve(room / held.size());
+    HeldLists<Triplet> held(in_place_ ? std::vector<std::vector<Triplet>*>{misses_, later_}
+                                      : std::vector<std::vector<Triplet>*>{later_});
     // The solid triangles come in Morton order, their data in the mesh's: a triangle's data is fetched
     // ahead (four triangles ahead by its number, its corners two ahead), while the one before is integrated.
     for (const int* k = first; k != last; ++k) {
@@ -62,7 +57,7 @@ class Assembler {
   CouplingReport report;  // this thread's counts (the integrators count in it too)
 
  private:
-  // lists: this thread's triplets by row range, or (in place) its misses and later entries
+  // lists: (in place) this thread's misses and later entries, or its later entries
   void solid_triangle(int ks, std::vector<Triplet>* const* lists) {
     MappedTriangle mt;
     mt.prepare(solid_.mesh(), map_, ks);
@@ -80,7 +75,7 @@ class Assembler {
     if (in_place_)
       block_.scatter(*in_place_, *lists[0], *lists[1]);
     else
-      block_.scatter(lists, ranges_);
+      block_.scatter(*row_sum_, t_, *lists[0]);
   }
 
   // Hints for the caches: the data of solid triangle k found by its number, and its corners.
@@ -96,8 +91,8 @@ class Assembler {
 
   const SolidSide& solid_;
   const SolidMap& map_;
-  const std::vector<std::vector<Triplet>*> triplets_;
-  const RowRanges ranges_;
+  const int t_;
+  RowSum* const row_sum_;
   InPlaceSum* const in_place_;
   std::vector<Triplet>* const misses_;
   std::vector<Triplet>* const later_;
@@ -226,17 +221,13 @@ const CsrMatrix& CouplingAssembly::assemble_checked(const FluidSide& fluid, cons
   const int requested = std::max(1, std::min(opt.threads, 64));
   const int threads = parallel ? requested : 1;
   while (static_cast<int>(threads_.size()) < threads) threads_.push_back(std::make_unique<Thread>());
-  // The compression's row ranges (one per requested thread: it touches neither the caller's Basis nor the
-  // map), and the triplet lists: thread t's triplets of range r in triplets_[r * threads + t].
   const int rows = solid.space().dof_count();
-  const RowRanges ranges{rows, std::max(1, std::min(requested, rows))};
-  const size_t lists = static_cast<size_t>(threads) * ranges.n;
-  if (triplets_.size() < lists) triplets_.resize(lists);
   // The map into the fluid side's scaled coordinates.
   const ScaledMap scaled_map(map, fluid.scale());
   const SolidMap& fluid_map = fluid.scale() == 0 ? map : scaled_map;
   // The threads sum straight into the last call's matrix (a time loop's pattern changes little), the
-  // entries off its pattern as triplets; rows that several threads meet are summed afterwards, in order.
+  // entries off its pattern as triplets; without a last matrix, into their rows (RowSum). Either way the rows
+  // that several threads meet are summed afterwards, in order.
   const int size = solid.mesh().size();
   const std::vector<int>& elements =
       share_in_order(solid, static_cast<int>(share_first(size, opt.part, opt.parts)),
@@ -252,17 +243,21 @@ const CsrMatrix& CouplingAssembly::assemble_checked(const FluidSide& fluid, cons
       std::copy(later_for, later_for + 4, later_for_);
     }
     if (misses_.size() < static_cast<size_t>(threads) + 1) misses_.resize(threads + 1);
-    if (later_.size() < static_cast<size_t>(threads)) later_.resize(threads);
   }
+  RowSum* const row_sum = in_place ? nullptr : matrix_.sum_by_rows(rows, fluid.space().dof_count(), threads);
+  if (row_sum) {
+    if (threads == 1)
+      row_sum->later_rows().clear();
+    else
+      mark_later_rows(solid, elements, threads, row_sum->later_rows(), owner_);
+  }
+  if (later_.size() < static_cast<size_t>(threads)) later_.resize(threads);
   total.setup_seconds = seconds_since(start);
 
   std::vector<std::unique_ptr<Assembler>> assemblers;
   run_shares(assemblers, threads, [&](int t) {
-    std::vector<std::vector<Triplet>*> lists_of_t;
-    for (int r = 0; r < ranges.n; ++r) lists_of_t.push_back(&triplets_[static_cast<size_t>(r) * threads + t]);
-    return std::make_unique<Assembler>(integrand, fluid, solid, fluid_map, opt, total, threads_[t]->on(fluid),
-                                       std::move(lists_of_t), ranges, in_place, in_place ? &misses_[t] : nullptr,
-                                       in_place ? &later_[t] : nullptr);
+    return std::make_unique<Assembler>(integrand, fluid, solid, fluid_map, opt, total, threads_[t]->on(fluid), t,
+                                       row_sum, in_place, in_place ? &misses_[t] : nullptr, &later_[t]);
   }, elements);
   total.pieces_seconds = seconds_since(start) - total.setup_seconds;
 
@@ -270,7 +265,7 @@ const CsrMatrix& CouplingAssembly::assemble_checked(const FluidSide& fluid, cons
   check_outside(opt, fluid.scale(), total);
   const CsrMatrix& by_rows =
       in_place ? matrix_.build_on_last_pattern(misses_.data(), later_.data(), threads)
-               : matrix_.build_by_range(ranges, fluid.space().dof_count(), triplets_.data(), threads);
+               : matrix_.build_summed_rows(later_.data(), threads);
   const CsrMatrix& m = in_dof_order(by_rows, solid, threads);
   check_finite(m, opt);
   total.seconds = seconds_since(start);

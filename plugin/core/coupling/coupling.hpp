@@ -51,11 +51,11 @@ CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const M
 
 // The assembly with its memory kept from call to call (grown, never shrunk), for a time loop that calls it
 // on the same sides with a moved map: each thread's triplets and search marks (kept while the fluid side
-// is the same), and the compressed rows with their buffers, whose values are summed in place when the
-// triplets fall on the last call's pattern (CsrBuilder). The blocks are summed straight into the last
-// call's matrix where their entries lie on its pattern, and only the others become triplets
-// (CsrBuilder::sum_on_last_pattern); with threads, the rows that the elements of several threads meet are
-// summed after them, in order. The rows are summed in the solid side's row order (SolidSide::rows: the rows
+// is the same), and the compressed rows with their buffers (CsrBuilder). The blocks are summed straight
+// into the last call's matrix where their entries lie on its pattern, and only the others become triplets
+// (CsrBuilder::sum_on_last_pattern); a first call, with no last matrix, sums them into their rows as they
+// come (CsrBuilder::sum_by_rows: no triplets to hold and sort); with threads, the rows that the elements of
+// several threads meet are summed after them, in order. The rows are summed in the solid side's row order (SolidSide::rows: the rows
 // met in turn lie together in memory) and handed out in the multiplier's dof order. The result is
 // assemble_coupling's, bit for bit.
 class CouplingAssembly {
@@ -78,7 +78,6 @@ class CouplingAssembly {
                                     const CouplingOptions& options, CouplingReport* report);
   struct Thread;
   std::vector<std::unique_ptr<Thread>> threads_;
-  std::vector<std::vector<Triplet>> triplets_;  // per row range and thread (assemble_checked)
   std::vector<int> share_;                      // the solid triangles of part `part`, in order
   // summed in place: per thread, the entries off the last pattern (and, last, those of the rows summed
   // after the threads) and the entries of those rows; per row, the thread that met it first (scratch)

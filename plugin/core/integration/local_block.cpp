@@ -46,6 +46,32 @@ void LocalBlock::scatter(std::vector<Triplet>* const* out, const RowRanges& rang
   }
 }
 
+void LocalBlock::scatter(RowSum& sum, int w, std::vector<Triplet>& later) {
+  const size_t columns = column_dofs_.size();
+  if (columns == 0) return;  // no piece (the element lies outside the fluid mesh): entries_ may be empty
+  if (row_columns_.size() < columns) {
+    row_columns_.resize(columns);
+    row_values_.resize(columns);
+  }
+  for (int i : used_rows_) {
+    const int row = row_dofs_[i];
+    const bool is_later = sum.later(row);
+    double* entry = &entries_[i];
+    int n = 0;
+    for (size_t c = 0; c < columns; ++c, entry += rows_) {
+      if (*entry == 0.0) continue;
+      if (is_later) {
+        later.emplace_back(row, column_dofs_[c], *entry);
+      } else {
+        row_columns_[n] = column_dofs_[c];
+        row_values_[n++] = *entry;
+      }
+      *entry = 0.0;
+    }
+    if (n > 0) sum.add_row(w, row, row_columns_.data(), row_values_.data(), n);
+  }
+}
+
 void LocalBlock::scatter(InPlaceSum& sum, std::vector<Triplet>& misses, std::vector<Triplet>& later) {
   // The columns by increasing dof (a handful: insertion sort), so that each row's entries are found in one
   // pass along the matrix row. An entry's sum is over the solid elements in order whatever the order of the

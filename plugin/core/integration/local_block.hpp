@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "sparse/in_place_sum.hpp"
+#include "sparse/row_sum.hpp"
 #include "sparse/sparse.hpp"
 
 namespace dlmfsi {
@@ -50,6 +51,10 @@ class LocalBlock {
   // (InPlaceSum::later) appended to later.
   void scatter(InPlaceSum& sum, std::vector<Triplet>& misses, std::vector<Triplet>& later);
 
+  // The same entries, in scatter(out)'s order, added to their rows in sum by writer w; the entries of the
+  // rows summed later (RowSum::later) appended to later.
+  void scatter(RowSum& sum, int w, std::vector<Triplet>& later);
+
   // Entries of one solid element for each used row and fluid column: an estimate of the triplets.
   size_t used_entries_per_fluid_element() const { return used_rows_.size() * used_fluid_dofs_.size(); }
 
@@ -60,6 +65,8 @@ class LocalBlock {
   std::vector<int> column_dofs_;  // global fluid dof of each column
   std::vector<int> column_of_;    // per local fluid dof of the element entered last: its column
   std::vector<int> by_dof_;       // scatter(InPlaceSum&, ...): the columns by increasing dof
+  std::vector<int> row_columns_;  // scatter(RowSum&, ...): one row's non-zero entries
+  std::vector<double> row_values_;
   // Column-major, rows_ per column, and spare room for more columns; zero outside the current element's
   // columns (scatter clears what it reads), so that a new column starts at zero.
   std::vector<double> entries_;

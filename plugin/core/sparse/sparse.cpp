@@ -152,6 +152,29 @@ void CsrBuilder::merge_rows(const CompressedRows& r, size_t at) {
   }
 }
 
+RowSum* CsrBuilder::sum_by_rows(int rows, int cols, int writers) {
+  row_sum_.start(rows, writers);
+  summed_cols_ = cols;
+  return &row_sum_;
+}
+
+const CsrMatrix& CsrBuilder::build_summed_rows(const std::vector<Triplet>* later, int threads) {
+  if (later)
+    for (int t = 0; t < threads; ++t)
+      for (const Triplet& e : later[t]) row_sum_.add(0, e.row, e.col, e.value);
+  kept_pattern_ = false;
+  CsrMatrix& m = matrix_;
+  m.start.clear();  // no pattern to keep until the rows are all in place
+  if (ranges_.empty()) ranges_.push_back(std::make_unique<CompressedRows>());
+  try {
+    row_sum_.build(summed_cols_, m, *ranges_[0], threads);
+  } catch (...) {
+    m.start.clear();
+    throw;
+  }
+  return m;
+}
+
 CsrMatrix compress(int rows, int cols, const std::vector<std::vector<Triplet>>& parts) {
   CsrBuilder builder;
   builder.build(rows, cols, parts);

@@ -8,6 +8,7 @@
 #include "sparse/compressed_rows.hpp"
 #include "sparse/csr_matrix.hpp"
 #include "sparse/in_place_sum.hpp"
+#include "sparse/row_sum.hpp"
 
 namespace dlmfsi {
 
@@ -43,6 +44,13 @@ class CsrBuilder {
   // entry's contributions then all come from one list, in order. The threads then merge ranges of rows.
   const CsrMatrix& build_on_last_pattern(std::vector<Triplet>* misses, const std::vector<Triplet>* later = nullptr,
                                          int threads = 1);
+  // A build without a last pattern, summed row by row as the entries come (RowSum: no triplets but the
+  // spilled rows'), by `writers` threads; then build_summed_rows. The same matrix as build's of the same
+  // contributions in the same order (writer 0's elements, then writer 1's, ...), bit for bit.
+  RowSum* sum_by_rows(int rows, int cols, int writers);
+  // The matrix of the rows summed; with threads, the later rows' triplets (RowSum::later_rows) in
+  // later[0 .. threads - 1] added first, in order.
+  const CsrMatrix& build_summed_rows(const std::vector<Triplet>* later = nullptr, int threads = 1);
   const CsrMatrix& matrix() const { return matrix_; }
   // Did the last build keep the pattern of the one before?
   bool kept_pattern() const { return kept_pattern_; }
@@ -59,6 +67,8 @@ class CsrBuilder {
   bool kept_pattern_ = false;
   std::vector<std::unique_ptr<CompressedRows>> ranges_;  // one per thread
   InPlaceSum in_place_sum_;
+  RowSum row_sum_;
+  int summed_cols_ = 0;
   std::vector<char> range_kept_;  // per range: were its rows summed in place?
   CsrMatrix merged_;              // build_on_last_pattern's output, then the matrix's former arrays
 };
