@@ -12,6 +12,7 @@
 
 #include "fe/basis_fit.hpp"
 #include "fe/lattice3d.hpp"
+#include "fe/polynomial_basis.hpp"
 #include "fe/polynomial_basis3d.hpp"
 #include "fe/points_evaluation3d.hpp"
 #include "support.hpp"
@@ -196,5 +197,50 @@ TEST(PolynomialFit, A2dLatticeFitAboveTheBasisDegreeHasExactZeros) {
     }
     EXPECT_EQ(nonzero, 0) << "degree " << degree;
     EXPECT_LE(worst, 1e-12) << "degree " << degree;  // the lattice's |V^-1| grows with the degree: 1.4e-14 at 8
+  }
+}
+
+namespace {
+
+// P1 whose functions on element k are permuted (k % 3 == 1: the last two swapped) or negated (k % 3 == 2)
+// against the barycentric coordinates, as an element whose dof order or signs depend on it: only elements
+// 0, 3, 6, ... share element 0's polynomials.
+class TwistedP1 : public Basis {
+ public:
+  explicit TwistedP1(const Mesh& m) : p1_(m) {}
+  int components() const override { return 1; }
+  int dof_count() const override { return p1_.dof_count(); }
+  int local_dofs() const override { return 3; }
+  void component_dofs(int, int& f, int& l) const override { f = 0; l = 3; }
+  void dofs(int k, int* g) const override { p1_.dofs(k, g); }
+  void evaluate(int k, Point xi, double* out) const override {
+    p1_.evaluate(k, xi, out);
+    if (k % 3 == 1)
+      for (int d = 0; d < 3; ++d) std::swap(out[3 + d], out[6 + d]);
+    if (k % 3 == 2)
+      for (int i = 0; i < 9; ++i) out[i] = -out[i];
+  }
+
+ private:
+  test::P1 p1_;
+};
+
+}  // namespace
+
+// Elements whose functions differ from element 0's get fits of their own (BasisFit's check at one point),
+// the others share element 0's: the fitted basis gives the basis's values and gradients on every element.
+TEST(PolynomialFit, ElementsThatDifferFromTheFirstGetTheirOwnFits) {
+  const Mesh mesh = test::grid_mesh(4, 3, -0.3, 0.2, 1.9, 0.7, true);
+  const TwistedP1 basis(mesh);
+  const PolynomialBasis fit(basis, mesh, 1, {0});
+  ASSERT_TRUE(fit.fitted());
+  double got[9], want[9];
+  for (int k = 0; k < mesh.size(); ++k) {
+    EXPECT_EQ(fit.shared(k), k % 3 == 0) << "element " << k;
+    for (const Point xi : {Point{0.1, 0.2}, Point{0.6, 0.3}}) {
+      fit.evaluate(k, xi, got);
+      basis.evaluate(k, xi, want);
+      for (int i = 0; i < 9; ++i) EXPECT_NEAR(got[i], want[i], 1e-11 * (1 + std::fabs(want[i]))) << k << " " << i;
+    }
   }
 }

@@ -45,6 +45,9 @@ class BasisFit {
  private:
   void fit(int k, double* coefficients);
   void check(int k, const double* v);  // v: the monomials at the check point
+  // Are the listed functions' values in sample (Basis::values' layout) element 0's at the check point, bit
+  // for bit (and does element 0 pass the check)?
+  bool same_as_first(const double* sample) const;
   void derive(const std::vector<double>& coefficients, std::vector<double>& derivative) const;
   const Basis& basis_;
   int degree_, nm_;
@@ -55,6 +58,7 @@ class BasisFit {
   std::vector<double> own_;        // element fits that differ from the shared one
   std::vector<double> reference_derivative_, own_derivative_;  // derivative_coefficients of both
   std::vector<double> sample_;     // room for Basis::values
+  std::vector<double> first_values_;  // per function, element 0's value at the check point (empty: not used)
 };
 
 }  // namespace dlmfsi
