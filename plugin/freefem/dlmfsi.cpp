@@ -35,7 +35,7 @@ using dlmfsi::Point;
 // A FreeFEM 2D finite element space as a dlmfsi::Basis.
 class SpaceBasis : public dlmfsi_ff::SpaceBasisOf<2, FESpace> {
  public:
-  using SpaceBasisOf::SpaceBasisOf;
+  explicit SpaceBasis(const FESpace& vh) : SpaceBasisOf(vh), same_everywhere_(values_independent_of_element(vh)) {}
   void evaluate(int k, Point xi, double* out) const override {
     static const bool what[last_operatortype] = {true, true, true, false, false, false, false, false, false, false};
     basis_functions(k, xi, what, out);
@@ -52,7 +52,13 @@ class SpaceBasis : public dlmfsi_ff::SpaceBasisOf<2, FESpace> {
   // them copied on the next calls at that point, without FreeFEM's evaluation. The fits of the multiplier
   // and of the map's components on one space check every element at that one point (fe/basis_fit), so only
   // the first fit evaluates them. What is kept stays valid while the space does (it is a function of it).
+  // On a space whose values do not depend on the element (same_everywhere()), every element is taken to
+  // give element 0's values there, so that no element but 0 is evaluated at that point.
   void remember_values(bool on) { remember_ = on; }
+  // One FreeFEM element, P0, P1 or P2 (Lagrange), on every triangle: its basis functions' values at a
+  // reference point are polynomials of the reference coordinates alone, the same on every triangle (the
+  // derivatives are not).
+  bool same_everywhere() const { return same_everywhere_; }
 
  private:
   // values(k, xi) from element 0's when element k is known to give them bit for bit; else false.
@@ -69,7 +75,7 @@ class SpaceBasis : public dlmfsi_ff::SpaceBasisOf<2, FESpace> {
       basis_functions(0, xi, what, first.data());
       first_.resize(static_cast<size_t>(nd_) * nc_);
       for (size_t f = 0; f < first_.size(); ++f) first_[f] = first[f * 3];
-      same_.assign(vh_.Th.nt, -1);
+      same_.assign(vh_.Th.nt, same_everywhere_ ? 1 : -1);
       point_ = xi;
       kept_point_ = true;
     }
@@ -93,6 +99,15 @@ class SpaceBasis : public dlmfsi_ff::SpaceBasisOf<2, FESpace> {
       }
   }
 
+  static bool values_independent_of_element(const FESpace& vh) {
+    const TypeOfFE* t = vh.TFE[0];
+    if (t != &P0Lagrange && t != &P1Lagrange && t != &P2Lagrange) return false;
+    for (int k = 1; k < vh.Th.nt; ++k)
+      if (vh.TFE[k] != t) return false;
+    return true;
+  }
+
+  const bool same_everywhere_;
   bool remember_ = false;
   mutable bool kept_point_ = false;
   mutable Point point_{};
@@ -100,8 +115,32 @@ class SpaceBasis : public dlmfsi_ff::SpaceBasisOf<2, FESpace> {
   mutable std::vector<signed char> same_;  // per element: 1 its values at point_ are first_, 0 not, -1 not known
 };
 
-// The fluid side (mesh, search grid, fitted basis) of the last call.
-using FluidCache = dlmfsi_ff::SideCache<FESpace, SpaceBasis, dlmfsi::FluidSide>;
+// SpaceBasis::remember_values(on) for a scope.
+struct Remembering {
+  Remembering(SpaceBasis& b, bool on) : basis(b) { basis.remember_values(on); }
+  ~Remembering() { basis.remember_values(false); }
+  Remembering(const Remembering&) = delete;
+  Remembering& operator=(const Remembering&) = delete;
+  SpaceBasis& basis;
+};
+
+// The fluid side (mesh, search grid, fitted basis) of the last call; on a space whose values are the same
+// on every element, its fit's check takes them from element 0 (SpaceBasis::remember_values).
+struct FluidCache : dlmfsi_ff::SideCache<FESpace, SpaceBasis, dlmfsi::FluidSide> {
+  const dlmfsi::FluidSide& get(const FESpace& vh, const std::vector<int>& comps) {
+    if (holds(vh, comps)) return *side;
+    side.reset();
+    basis.reset(new SpaceBasis(vh));
+    {
+      const Remembering on(*basis, basis->same_everywhere());
+      side.reset(new dlmfsi::FluidSide(dlmfsi_ff::convert(vh.Th), *basis, comps));
+    }
+    space = &vh;
+    id = vh;
+    components = comps;
+    return *side;
+  }
+};
 
 FluidCache& fluid_cache() {
   static FluidCache* cache = new FluidCache;  // never destroyed: FreeFEM tears its spaces down first
@@ -123,16 +162,9 @@ namespace {
 // The solid side (solid mesh, multiplier fit) and the fits of the map's spaces of the last calls (the two
 // most recently used).
 struct SolidCache : dlmfsi_ff::SolidCacheOf<FESpace, SpaceBasis, dlmfsi::SolidSide, dlmfsi::PolynomialBasis, 2> {
-  // SpaceBasis::remember_values(on) for a scope.
-  struct Remembering {
-    Remembering(SpaceBasis& b, bool on) : basis(b) { basis.remember_values(on); }
-    ~Remembering() { basis.remember_values(false); }
-    Remembering(const Remembering&) = delete;
-    Remembering& operator=(const Remembering&) = delete;
-    SpaceBasis& basis;
-  };
   // The side, on its space's basis with the dofs tabulated; with remember (the map's fits will be on other
-  // components of this space), the values at the fits' check point remembered while the side is prepared.
+  // components of this space), or on a space whose values are the same on every element, the values at the
+  // fit's check point remembered while the side is prepared.
   const dlmfsi::SolidSide& get(const FESpace& vs, const std::vector<int>& comps, bool remember) {
     if (holds(vs, comps)) return *side;
     fits.clear();
@@ -140,7 +172,7 @@ struct SolidCache : dlmfsi_ff::SolidCacheOf<FESpace, SpaceBasis, dlmfsi::SolidSi
     basis.reset(new SpaceBasis(vs));
     basis->tabulate_dofs();  // before the side, which reads every element's dofs too
     {
-      const Remembering on(*basis, remember);
+      const Remembering on(*basis, remember || basis->same_everywhere());
       side.reset(new dlmfsi::SolidSide(dlmfsi_ff::convert(vs.Th), *basis, comps));
     }
     space = &vs;
