@@ -216,6 +216,7 @@ Piece3 assemble(const Candidate* c, int n, Normal&& normal) {
       for (k = 0; k < m; ++k) cycle[k] = static_cast<unsigned char>(list[k]);
     }
     used += m;
+    out.face_vertices[out.faces] = face;
     out.face_start[++out.faces] = used;
   }
   return out;
@@ -327,6 +328,7 @@ Piece3 whole(const Point3 t[4], int shift) {
     out.v[i] = t[i];
     out.planes[i] = static_cast<unsigned char>(faces_at_vertex(i) << shift);
     for (int k = 0; k < 3; ++k) out.face_index[3 * i + k] = static_cast<unsigned char>(kFace[i][k]);
+    out.face_vertices[i] = 0xFu & ~(1u << i);
     out.face_start[i + 1] = 3 * (i + 1);
   }
   return out;
@@ -566,12 +568,17 @@ struct SimpleVertex {
   double x, y, z;     // plain doubles (a Point3 is zero-initialized): the polytope's 32 are not cleared
   double d[4], e[4];  // orient3d values against b's face planes (TetFaces' sign convention), error bounds
   int nb[3];
+  int back[3];      // where this vertex is in its neighbours' lists: v_[nb[s]].nb[back[s]] is this one
   unsigned planes;  // as Piece3::planes
   Point3 p() const { return {x, y, z}; }
 };
 
-// a's vertex i's neighbours in the sense det [n0 - v, n1 - v, n2 - v] > 0 (a positively oriented).
+constexpr int kNextSlot[3] = {1, 2, 0};
+
+// a's vertex i's neighbours in the sense det [n0 - v, n1 - v, n2 - v] > 0 (a positively oriented), and
+// where i is in their lists.
 constexpr int kTetNeighbours[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+constexpr int kTetBack[4][3] = {{0, 0, 0}, {0, 2, 1}, {1, 2, 1}, {2, 2, 1}};
 // The largest error bound, relative to |d(u) - d(w)| on the edge being cut, for which the crossing is built
 // in floating point: its position along the edge is then within 2^-40 of the edge's length.
 constexpr double kMaxRelativeBound = 0x1p-40;
@@ -594,7 +601,10 @@ class SimplePolytope {
         v.d[j] = d[j][i];
         v.e[j] = e[j][i];
       }
-      for (int s = 0; s < 3; ++s) v.nb[s] = kTetNeighbours[i][s];
+      for (int s = 0; s < 3; ++s) {
+        v.nb[s] = kTetNeighbours[i][s];
+        v.back[s] = kTetBack[i][s];
+      }
       v.planes = faces_at_vertex(i);
     }
     live_ = 0xFu;
@@ -621,9 +631,10 @@ class SimplePolytope {
     const int old = n_;
     for (unsigned inside = live_ & ~outside; inside != 0; inside &= inside - 1) {
       const int k = __builtin_ctz(inside);
-      for (int s = 0; s < 3; ++s) {
-        const int x = v_[k].nb[s];
-        if (!(outside >> x & 1u)) continue;
+      const int* nb = v_[k].nb;
+      unsigned crossed = (outside >> nb[0] & 1u) | (outside >> nb[1] & 1u) << 1 | (outside >> nb[2] & 1u) << 2;
+      for (; crossed != 0; crossed &= crossed - 1) {
+        const int s = __builtin_ctz(crossed), x = nb[s];
         if (n_ == kCapacity) return kUncertain;
         const SimpleVertex &u = v_[k], &o = v_[x];
         const double du = u.d[j], dx = o.d[j], span = du - dx, error = u.e[j] + o.e[j];
@@ -634,7 +645,7 @@ class SimplePolytope {
         w.x = crossing.x;
         w.y = crossing.y;
         w.z = crossing.z;
-        for (int m = j + 1; m < 4; ++m) {
+        for (int m = 0; m < 4; ++m) {  // the planes up to j are done with: all four, a fixed loop
           const double change = o.d[m] - u.d[m];
           w.d[m] = u.d[m] + t * change;
           w.e[m] = (std::max(u.e[m], o.e[m]) + dt * std::fabs(change) +
@@ -642,21 +653,25 @@ class SimplePolytope {
         }
         w.planes = (u.planes & o.planes) | 1u << (4 + j);
         w.nb[0] = k;
-        v_[k].nb[s] = n_++;
+        w.back[0] = s;
+        v_[k].nb[s] = n_;
+        v_[k].back[s] = 0;
+        ++n_;
       }
     }
     // The cap: from each new vertex w, walk the face on one side of its edge into the kept part until the
     // next new vertex c; w and c are neighbours on the cap (w.nb[2] = c, c.nb[1] = w).
     for (int w = old; w < n_; ++w) {
-      int previous = w, current = v_[w].nb[0];
+      int current = v_[w].nb[0], slot = kNextSlot[v_[w].back[0]];
       while (current < old) {
-        const int* nb = v_[current].nb;
-        const int i = nb[0] == previous ? 0 : (nb[1] == previous ? 1 : 2);
-        previous = current;
-        current = nb[i == 2 ? 0 : i + 1];
+        const SimpleVertex& c = v_[current];
+        current = c.nb[slot];
+        slot = kNextSlot[c.back[slot]];
       }
       v_[w].nb[2] = current;
+      v_[w].back[2] = 1;
       v_[current].nb[1] = w;
+      v_[current].back[1] = 2;
     }
     // The vertices outside stay in the buffer, dead (at most 4 + 4 + 5 + 6 + 7 = 26 in all: a cut adds one
     // vertex per face it crosses).
@@ -686,16 +701,17 @@ class SimplePolytope {
         if (walked[k] >> s & 1u) continue;
         if (out.faces == Piece3::kMaxFaces) return false;
         int current = k, slot = s;
+        unsigned on = 0;
         do {
           if (used == Piece3::kMaxFaceIndices) return false;
           out.face_index[used++] = static_cast<unsigned char>(index[current]);
+          on |= 1u << index[current];
           walked[current] |= 1u << slot;
-          const int next = v_[current].nb[slot];
-          const int* nb = v_[next].nb;
-          const int i = nb[0] == current ? 0 : (nb[1] == current ? 1 : 2);
-          current = next;
-          slot = i == 2 ? 0 : i + 1;
+          const SimpleVertex& c = v_[current];
+          current = c.nb[slot];
+          slot = kNextSlot[c.back[slot]];
         } while (!(walked[current] >> slot & 1u));
+        out.face_vertices[out.faces] = on;
         out.face_start[++out.faces] = used;
       }
     out.exact = true;

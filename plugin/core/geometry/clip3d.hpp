@@ -19,6 +19,8 @@ struct Piece3 {
   unsigned char face_index[kMaxFaceIndices];
   int face_start[kMaxFaces + 1] = {0};
   int faces = 0;
+  // The same faces as vertex sets: bit k of face_vertices[f] when vertex k is on face f (f < faces).
+  unsigned face_vertices[kMaxFaces];
   // Which planes each vertex lies on: bits 0-3 the faces of the first tetrahedron (face i opposite its
   // vertex i), bits 4-7 those of the second (a plane shared by both keeps the first one's bit only).
   unsigned char planes[kMaxVertices];
@@ -41,10 +43,8 @@ struct Piece3 {
   template <class F>
   void for_each_tetrahedron_from(int a, F&& f) const {
     for (int k = 0; k < faces; ++k) {
+      if (face_vertices[k] >> a & 1u) continue;
       const int s = face_start[k], e = face_start[k + 1];
-      bool has_apex = false;
-      for (int i = s; i < e; ++i) has_apex |= face_index[i] == a;
-      if (has_apex) continue;
       for (int i = s + 1; i + 1 < e; ++i) f(a, face_index[s], face_index[i], face_index[i + 1]);
     }
   }
@@ -54,12 +54,12 @@ struct Piece3 {
   int apex() const {
     int score[kMaxVertices] = {0};
     for (int k = 0; k < faces; ++k) {
-      const int s = face_start[k], e = face_start[k + 1];
-      for (int i = s; i < e; ++i) score[face_index[i]] += e - s - 2;
+      const unsigned on = face_vertices[k];
+      const int size = __builtin_popcount(on) - 2;
+      for (int i = 0; i < n; ++i) score[i] += static_cast<int>(on >> i & 1u) * size;
     }
     int best = 0;
-    for (int i = 1; i < n; ++i)
-      if (score[i] > score[best]) best = i;
+    for (int i = 1; i < n; ++i) best = score[i] > score[best] ? i : best;
     return best;
   }
   // Sum of the pulling triangulation's |volumes| (each tetrahedron's is >= 0 exactly; round-off only).
