@@ -726,8 +726,11 @@ class SimplePolytope {
 
 }  // namespace
 
-Piece3 clip_filtered(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsigned& beyond,
-                     ClipMemo3* memo) {
+namespace {
+
+// clip_filtered's floating-point path: false when a side is uncertain (then out is unset), else out is the
+// piece (n = 0 when empty) and beyond is set.
+bool filtered_piece(const Point3 a[4], const Point3 b[4], unsigned& beyond, Piece3& out) {
   TetFaces b_faces;
   b_faces.set(b);
   double d[4][4], e[4][4];
@@ -740,23 +743,34 @@ Piece3 clip_filtered(const Point3 a[4], const TetFaces& a_faces, const Point3 b[
       inner |= static_cast<unsigned>(d[j][i] > e[j][i]) << (4 * j + i);
       outer |= static_cast<unsigned>(-d[j][i] > e[j][i]) << (4 * j + i);
     }
-  if (!certain) return clip(a, a_faces, b, beyond, memo);
+  if (!certain) return false;
   beyond = 0;
+  out.n = 0;
   for (int j = 0; j < 4; ++j) {
-    if ((inner >> (4 * j) & 0xFu) == 0) return Piece3{};  // face j's plane separates
+    if ((inner >> (4 * j) & 0xFu) == 0) return true;  // face j's plane separates
     beyond |= static_cast<unsigned>((outer >> (4 * j) & 0xFu) != 0) << j;
   }
-  if (beyond == 0) return whole(a, 0);  // a in closed b
+  if (beyond == 0) {  // a in closed b
+    out = whole(a, 0);
+    return true;
+  }
   SimplePolytope polytope;
   polytope.start(a, d, e);
   for (int j = 0; j < 4; ++j) {
     if (!(beyond >> j & 1u)) continue;
     const SimplePolytope::Outcome o = polytope.cut(j);
-    if (o == SimplePolytope::kEmpty) return Piece3{};
-    if (o == SimplePolytope::kUncertain) return clip(a, a_faces, b, beyond, memo);
+    if (o == SimplePolytope::kEmpty) return true;
+    if (o == SimplePolytope::kUncertain) return false;
   }
-  Piece3 out;
-  if (!polytope.to_piece(b, out)) return clip(a, a_faces, b, beyond, memo);
+  return polytope.to_piece(b, out);
+}
+
+}  // namespace
+
+Piece3 clip_filtered(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsigned& beyond,
+                     ClipMemo3* memo) {
+  Piece3 out;  // the one object returned (no copy)
+  if (!filtered_piece(a, b, beyond, out)) out = clip(a, a_faces, b, beyond, memo);
   return out;
 }
 

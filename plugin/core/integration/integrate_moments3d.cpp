@@ -142,16 +142,26 @@ double MomentIntegrator3::integrate(const ClippedImage3& image, int kf, const Pi
       for (int a = 0; a < 3; ++a) fc[3 * f + a] = stiff * (g[0] * j[0][a] + g[1] * j[1][a] + g[2] * j[2][a]);
   }
   const ComponentPairs& pairs = integrand_.pairs;
-  for (size_t p = 0; p < pairs.size(); ++p) {
+  const size_t pair_count = pairs.size();
+  for (size_t p = 0; p < pair_count; ++p) {
     const ComponentPair& pair = pairs[p];
-    for (size_t a = 0; a < pair.fluid_functions.size(); ++a) {
-      const int f = pair.fluid_functions[a];
-      double* col = block.column(pair.fluid_first + static_cast<int>(a)) + pair.solid_first;
-      for (size_t b = 0; b < pair.solid_functions.size(); ++b) {
-        const int g = pair.solid_functions[b];
-        double sum = fa[f] * sv[g] + fm[3 * f] * sy[3 * g] + fm[3 * f + 1] * sy[3 * g + 1] + fm[3 * f + 2] * sy[3 * g + 2];
-        if (gradients) sum += fc[3 * f] * sg[3 * g] + fc[3 * f + 1] * sg[3 * g + 1] + fc[3 * f + 2] * sg[3 * g + 2];
-        col[b] += sum;
+    const int *fluid = pair.fluid_functions.data(), *solid = pair.solid_functions.data();
+    const int nf = static_cast<int>(pair.fluid_functions.size()), ns = static_cast<int>(pair.solid_functions.size());
+    for (int a = 0; a < nf; ++a) {
+      const int f = fluid[a];
+      const double va = fa[f], m0 = fm[3 * f], m1 = fm[3 * f + 1], m2 = fm[3 * f + 2];
+      double* col = block.column(pair.fluid_first + a) + pair.solid_first;
+      if (gradients) {
+        for (int b = 0; b < ns; ++b) {
+          const int g = solid[b];
+          const double sum = va * sv[g] + m0 * sy[3 * g] + m1 * sy[3 * g + 1] + m2 * sy[3 * g + 2];
+          col[b] += sum + (fc[3 * f] * sg[3 * g] + fc[3 * f + 1] * sg[3 * g + 1] + fc[3 * f + 2] * sg[3 * g + 2]);
+        }
+      } else {
+        for (int b = 0; b < ns; ++b) {
+          const int g = solid[b];
+          col[b] += va * sv[g] + m0 * sy[3 * g] + m1 * sy[3 * g + 1] + m2 * sy[3 * g + 2];
+        }
       }
     }
   }
