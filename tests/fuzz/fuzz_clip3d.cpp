@@ -17,6 +17,8 @@
 //     vertices, faces from the exact plane sets, Euler's formula, every vertex within round-off of both
 //     tetrahedra and of its faces' planes: 64 eps M, and at least two subnormal steps, 2^-1073, since for
 //     tetrahedra of subnormal size the constructed vertices are multiples of 2^-1074);
+//   - clip_filtered (the search's clipper) against clip: the same vertex count and plane sets, a valid shape,
+//     and (volumes representable) the same volume to 1e-13 M D^2;
 //   - when the pair's scale M D^2 (M the largest |coordinate|, D the diameter) lies in [2^-900, 2^900], so
 //     volumes are representable: vol(a ∩ b) against the exact volume in GMP rationals, vol(b ∩ a), and a
 //     split of a into four tetrahedra about its centroid tiling a ∩ b, each to 1e-13 M D^2.
@@ -71,9 +73,21 @@ void check_pair(Tet a, Tet b) {
   const double shape_tol = std::max(64 * 2.2e-16 * m, 0x1p-1073);
   for (const std::string& shape : {test3d::piece_shape(p, a, b, shape_tol), test3d::piece_shape(q, b, a, shape_tol)})
     if (!shape.empty()) fail(shape, a, b);
+  // the search's clipper (clip_filtered): clip's vertex count and plane sets, a valid shape, the same volume
+  TetFaces a_faces;
+  a_faces.set(a.data());
+  unsigned beyond;
+  const Piece3 f = clip_filtered(a.data(), a_faces, b.data(), beyond);
+  std::vector<int> planes_f(f.planes, f.planes + f.n), planes_p(p.planes, p.planes + p.n);
+  std::sort(planes_f.begin(), planes_f.end());
+  std::sort(planes_p.begin(), planes_p.end());
+  if (f.n != p.n || planes_f != planes_p) fail("clip_filtered's vertices or planes are not clip's", a, b, f.n, p.n);
+  const std::string filtered_shape = test3d::piece_shape(f, a, b, shape_tol);
+  if (!filtered_shape.empty()) fail("clip_filtered: " + filtered_shape, a, b);
   const double scale = m * d * d;
   if (!(scale >= 0x1p-900 && scale <= 0x1p900)) return;  // volumes not representable
   const double tol = 1e-13 * scale, v = p.volume();
+  if (!(std::fabs(f.volume() - v) <= tol)) fail("clip_filtered's volume against clip's", a, b, f.volume(), v);
   const double exact = ref::exact_intersection_volume(a.data(), b.data());
   if (!(std::fabs(v - exact) <= tol)) fail("volume against the exact volume", a, b, v, exact);
   if (!(std::fabs(q.volume() - v) <= tol)) fail("vol(b ∩ a) != vol(a ∩ b)", a, b, q.volume(), v);
