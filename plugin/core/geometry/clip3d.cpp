@@ -617,19 +617,30 @@ class SimplePolytope {
   // max(e_o(u), e_o(x)) + dt |d_o(x) - d_o(u)| + 4 eps (|d_o(u)| + |d_o(x)|), dt >= |t - t_exact|:
   // |t - t_exact| <= (e(u) + e(x)) / (d(u) - d(x)) to first order (both ends' values within their bounds),
   // plus 3 eps for t's own rounding.
+  // The cut by plane j; the values and bounds carried to the new vertices are those of the later planes
+  // (j a template argument: a fixed loop over them).
   Outcome cut(int j) {
-    unsigned outside = 0;
-    bool certain = true;
+    switch (j) {
+      case 0: return cut_by<0>();
+      case 1: return cut_by<1>();
+      case 2: return cut_by<2>();
+      default: return cut_by<3>();
+    }
+  }
+
+  template <int j>
+  Outcome cut_by() {
+    unsigned inside = 0, outside = 0;  // certified
     for (unsigned live = live_; live != 0; live &= live - 1) {
       const int k = __builtin_ctz(live);
-      certain &= std::fabs(v_[k].d[j]) > v_[k].e[j];
-      outside |= static_cast<unsigned>(v_[k].d[j] < 0) << k;
+      inside |= static_cast<unsigned>(v_[k].d[j] > v_[k].e[j]) << k;
+      outside |= static_cast<unsigned>(-v_[k].d[j] > v_[k].e[j]) << k;
     }
-    if (!certain) return kUncertain;
+    if ((inside | outside) != live_) return kUncertain;
     if (outside == 0) return kKept;
     if (outside == live_) return kEmpty;
     const int old = n_;
-    for (unsigned inside = live_ & ~outside; inside != 0; inside &= inside - 1) {
+    for (; inside != 0; inside &= inside - 1) {
       const int k = __builtin_ctz(inside);
       const int* nb = v_[k].nb;
       unsigned crossed = (outside >> nb[0] & 1u) | (outside >> nb[1] & 1u) << 1 | (outside >> nb[2] & 1u) << 2;
@@ -645,7 +656,7 @@ class SimplePolytope {
         w.x = crossing.x;
         w.y = crossing.y;
         w.z = crossing.z;
-        for (int m = 0; m < 4; ++m) {  // the planes up to j are done with: all four, a fixed loop
+        for (int m = j + 1; m < 4; ++m) {
           const double change = o.d[m] - u.d[m];
           w.d[m] = u.d[m] + t * change;
           w.e[m] = (std::max(u.e[m], o.e[m]) + dt * std::fabs(change) +
@@ -734,16 +745,14 @@ bool filtered_piece(const Point3 a[4], const Point3 b[4], unsigned& beyond, Piec
   TetFaces b_faces;
   b_faces.set(b);
   double d[4][4], e[4][4];
-  bool certain = true;
-  unsigned inner = 0, outer = 0;  // bit 4 j + i: a's vertex i strictly inside, outside b's face j
+  unsigned inner = 0, outer = 0;  // bit 4 j + i: a's vertex i certainly inside, outside b's face j
   for (int j = 0; j < 4; ++j)
     for (int i = 0; i < 4; ++i) {
       d[j][i] = b_faces.face[j].estimate(a[i], e[j][i]);
-      certain &= std::fabs(d[j][i]) > e[j][i];
       inner |= static_cast<unsigned>(d[j][i] > e[j][i]) << (4 * j + i);
       outer |= static_cast<unsigned>(-d[j][i] > e[j][i]) << (4 * j + i);
     }
-  if (!certain) return false;
+  if ((inner | outer) != 0xFFFFu) return false;  // a side within its bound
   beyond = 0;
   out.n = 0;
   for (int j = 0; j < 4; ++j) {
