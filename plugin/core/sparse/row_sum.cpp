@@ -34,36 +34,16 @@ int RowSum::new_chunk(Writer& writer) {
   return static_cast<int>(writer.chunks.size() - 1);
 }
 
-void RowSum::add_slow(int w, int row, int col, double v) {
-  Writer& writer = writers_[w];
-  std::vector<Triplet>& spill = spills_[w];
+void RowSum::append(int w, int row, int last, int col, double v) {
+  std::vector<Chunk>& chunks = writers_[w].chunks;
   int& head = head_[row];
-  if (head == kSpilled) {
-    spill.emplace_back(row, col, v);
-    return;
-  }
-  if (head == kNone) head = first_chunk(w);
-  // The row's chunks in turn.
   const int first = head >> writer_bits_;
-  const int count = writer.chunks[first].count;
-  int last = first;
-  for (int seen = 0;;) {
-    Chunk& c = writer.chunks[last];
-    const int in = std::min(count - seen, kChunk);
-    for (int i = 0; i < in; ++i)
-      if (c.column[i] == col) {
-        c.value[i] += v;
-        return;
-      }
-    seen += in;
-    if (seen == count) break;
-    last = c.next;
-  }
+  const int count = chunks[first].count;
   if (count == kRowRoom) {
     // The row's sums so far, then this entry, to the spill (each column's sum ahead of its later terms).
-    for (int c = first, left = count; left > 0; c = writer.chunks[c].next) {
-      const Chunk& chunk = writer.chunks[c];
-      for (int i = 0; i < std::min(left, kChunk); ++i) spill.emplace_back(row, chunk.column[i], chunk.value[i]);
+    std::vector<Triplet>& spill = spills_[w];
+    for (int c = first, left = count; left > 0; c = chunks[c].next) {
+      for (int i = 0; i < std::min(left, kChunk); ++i) spill.emplace_back(row, chunks[c].column[i], chunks[c].value[i]);
       left -= kChunk;
     }
     spill.emplace_back(row, col, v);
@@ -72,13 +52,13 @@ void RowSum::add_slow(int w, int row, int col, double v) {
   }
   const int slot = count % kChunk;
   if (slot == 0 && count > 0) {  // the last chunk is full
-    const int added = new_chunk(writer);
-    writer.chunks[last].next = added;
+    const int added = new_chunk(writers_[w]);
+    chunks[last].next = added;
     last = added;
   }
-  writer.chunks[last].column[slot] = col;
-  writer.chunks[last].value[slot] = v;
-  writer.chunks[first].count = count + 1;
+  chunks[last].column[slot] = col;
+  chunks[last].value[slot] = v;
+  chunks[first].count = count + 1;
 }
 
 int RowSum::length(int i, const CompressedRows& spilled) const {

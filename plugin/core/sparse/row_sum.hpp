@@ -32,10 +32,12 @@ class RowSum {
   void add_row(int w, int row, const int* col, const double* v, int n) {
     int& head = head_[row];
     if (head == kNone) head = first_chunk(w);
+    std::vector<Chunk>& chunks = writers_[w].chunks;
+    int e = 0;
     if (head >= 0) {
-      Chunk& c = writers_[w].chunks[static_cast<std::size_t>(head >> writer_bits_)];
-      if (c.count <= kChunk) {  // one chunk (the usual row): searched without a branch on the data
-        int count = c.count, e = 0;
+      Chunk& c = chunks[static_cast<std::size_t>(head >> writer_bits_)];
+      if (c.count <= kChunk) {  // one chunk (the usual row): new columns written in place
+        int count = c.count;
         for (; e < n; ++e) {
           const int at = find(c.column, col[e]);
           if (at >= 0) {
@@ -47,12 +49,28 @@ class RowSum {
           }
         }
         c.count = count;
-        col += e;
-        v += e;
-        n -= e;
       }
     }
-    for (int e = 0; e < n; ++e) add_slow(w, row, col[e], v[e]);
+    for (; e < n; ++e) {
+      if (head == kSpilled) {
+        spills_[w].emplace_back(row, col[e], v[e]);
+        continue;
+      }
+      // the row's chunks searched in turn
+      int c = head >> writer_bits_;
+      for (;;) {
+        const int at = find(chunks[c].column, col[e]);
+        if (at >= 0) {
+          chunks[c].value[at] += v[e];
+          break;
+        }
+        if (chunks[c].next < 0) {
+          append(w, row, c, col[e], v[e]);
+          break;
+        }
+        c = chunks[c].next;
+      }
+    }
   }
   // The summed matrix into m (rows columns and values; columns sorted in each row), the spilled rows'
   // entries compressed through spilled; threads: the rows split into that many ranges, filled at once.
@@ -76,7 +94,9 @@ class RowSum {
   struct alignas(64) Writer {  // a cache line each: writers taking chunks never write to one line
     std::vector<Chunk> chunks;
   };
-  void add_slow(int w, int row, int col, double v);
+  // A column new to the row (its last chunk `last`): in a free place, in a new chunk, or, the row full, the
+  // row spilled.
+  void append(int w, int row, int last, int col, double v);
   int new_chunk(Writer& writer);
   // A new row's first chunk, taken by writer w (its head).
   int first_chunk(int w) { return new_chunk(writers_[w]) << writer_bits_ | w; }
