@@ -55,7 +55,7 @@ struct Piece3 {
     int score[kMaxVertices] = {0};
     for (int k = 0; k < faces; ++k) {
       const unsigned on = face_vertices[k];
-      const int size = __builtin_popcount(on) - 2;
+      const int size = face_start[k + 1] - face_start[k] - 2;
       for (int i = 0; i < n; ++i) score[i] += static_cast<int>(on >> i & 1u) * size;
     }
     int best = 0;
