@@ -586,7 +586,7 @@ constexpr double kEpsilon = 0x1p-53;
 
 class SimplePolytope {
  public:
-  static constexpr int kCapacity = 32;
+  static constexpr int kCapacity = 32;  // at most the bits of live_
   enum Outcome { kKept, kEmpty, kUncertain };
 
   // a's four vertices with their values against b's planes.
@@ -686,7 +686,8 @@ class SimplePolytope {
     }
     // The vertices outside stay in the buffer, dead (at most 4 + 4 + 5 + 6 + 7 = 26 in all: a cut adds one
     // vertex per face it crosses).
-    live_ = (live_ & ~outside) | (((1u << n_) - 1) & ~((1u << old) - 1));
+    const unsigned made = n_ == 32 ? ~0u : (1u << n_) - 1;  // the vertices made so far (live_ is 32 bits)
+    live_ = (live_ & ~outside) | (made & ~((1u << old) - 1));
     return kKept;
   }
 

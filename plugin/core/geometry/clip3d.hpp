@@ -54,9 +54,8 @@ struct Piece3 {
   int apex() const {
     int score[kMaxVertices] = {0};
     for (int k = 0; k < faces; ++k) {
-      const unsigned on = face_vertices[k];
-      const int size = face_start[k + 1] - face_start[k] - 2;
-      for (int i = 0; i < n; ++i) score[i] += static_cast<int>(on >> i & 1u) * size;
+      const int s = face_start[k], e = face_start[k + 1];
+      for (int i = s; i < e; ++i) score[face_index[i]] += e - s - 2;
     }
     int best = 0;
     for (int i = 1; i < n; ++i) best = score[i] > score[best] ? i : best;
