@@ -32,10 +32,49 @@ namespace {
 
 using dlmfsi::Point;
 
+// The element a script calls name (FreeFEM's table of global names), or null.
+const TypeOfFE* named_element(const char* name) {
+  const C_F0 c = Global.Find(name);
+  if (c.left() != atype<TypeOfFE*>() || !c.LeftValue()) return nullptr;
+  return GetAny<TypeOfFE*>((*c.LeftValue())(NullStack));
+}
+
+// Is t one of P0, P1, P1b, P2 (Lagrange)? Their basis functions' values at a reference point are
+// polynomials of its barycentric coordinates alone (P1b: l_i - 9 l0 l1 l2 and 27 l0 l1 l2), so the same on
+// every triangle. No other element is taken to be so (RT0's values depend on the triangle's edges).
+bool barycentric_values(const TypeOfFE* t) {
+  static const TypeOfFE* const p1b = named_element("P1b");  // FreeFEM exports no C++ name for it
+  return t && (t == &P0Lagrange || t == &P1Lagrange || t == &P2Lagrange || t == p1b);
+}
+
+// Is t the sum of parts in this order (FreeFEM's composite element: each part's dofs after the previous
+// part's, dof d of part j as dof d of it, its components after the previous part's)?
+bool sum_of(const TypeOfFE& t, const std::vector<const TypeOfFE*>& parts) {
+  int dof = 0, components = 0;
+  for (size_t j = 0; j < parts.size(); ++j) {
+    if (!parts[j] || dof + parts[j]->NbDoF > t.NbDoF) return false;
+    for (int d = 0; d < parts[j]->NbDoF; ++d)
+      if (t.fromFE[dof + d] != static_cast<int>(j) || t.fromDF[dof + d] != d) return false;
+    dof += parts[j]->NbDoF;
+    components += parts[j]->N;
+  }
+  return dof == t.NbDoF && components == t.N;
+}
+
+// The elements a script's space declared as a composite (fespace Rh(Th, [P1, P1, P1b, P1b])) is the sum of,
+// in order, when vh is that space's current FESpace; else empty.
+std::vector<const TypeOfFE*> space_parts(const v_fes* declared, const FESpace& vh) {
+  const pfes_tefk* composite = dynamic_cast<const pfes_tefk*>(declared);
+  if (!composite || static_cast<const FESpace*>(composite->pVh) != &vh || vh.ptrTFE != vh.TFE[0]) return {};
+  return std::vector<const TypeOfFE*>(composite->tef, composite->tef + composite->k);
+}
+
 // A FreeFEM 2D finite element space as a dlmfsi::Basis.
 class SpaceBasis : public dlmfsi_ff::SpaceBasisOf<2, FESpace> {
  public:
-  explicit SpaceBasis(const FESpace& vh) : SpaceBasisOf(vh), same_everywhere_(values_independent_of_element(vh)) {}
+  // parts: the elements vh's element is the sum of, in order (space_parts), or empty when it is one element.
+  explicit SpaceBasis(const FESpace& vh, const std::vector<const TypeOfFE*>& parts = {})
+      : SpaceBasisOf(vh), same_everywhere_(values_independent_of_element(vh, parts)) {}
   void evaluate(int k, Point xi, double* out) const override {
     static const bool what[last_operatortype] = {true, true, true, false, false, false, false, false, false, false};
     basis_functions(k, xi, what, out);
@@ -55,8 +94,9 @@ class SpaceBasis : public dlmfsi_ff::SpaceBasisOf<2, FESpace> {
   // On a space whose values do not depend on the element (same_everywhere()), every element is taken to
   // give element 0's values there, so that no element but 0 is evaluated at that point.
   void remember_values(bool on) { remember_ = on; }
-  // One FreeFEM element, P0, P1 or P2 (Lagrange), on every triangle: its basis functions' values at a
-  // reference point are polynomials of the reference coordinates alone, the same on every triangle (the
+  // One FreeFEM element on every triangle, P0, P1, P1b or P2, or a sum of those (a composite such as
+  // [P1, P1, P1b, P1b], whose values are its parts' values side by side): the basis functions' values at a
+  // reference point are polynomials of the barycentric coordinates alone, the same on every triangle (the
   // derivatives are not).
   bool same_everywhere() const { return same_everywhere_; }
 
@@ -99,12 +139,13 @@ class SpaceBasis : public dlmfsi_ff::SpaceBasisOf<2, FESpace> {
       }
   }
 
-  static bool values_independent_of_element(const FESpace& vh) {
+  static bool values_independent_of_element(const FESpace& vh, const std::vector<const TypeOfFE*>& parts) {
     const TypeOfFE* t = vh.TFE[0];
-    if (t != &P0Lagrange && t != &P1Lagrange && t != &P2Lagrange) return false;
     for (int k = 1; k < vh.Th.nt; ++k)
       if (vh.TFE[k] != t) return false;
-    return true;
+    if (parts.empty()) return barycentric_values(t);
+    if (!sum_of(*t, parts)) return false;
+    return std::all_of(parts.begin(), parts.end(), barycentric_values);
   }
 
   const bool same_everywhere_;
@@ -127,10 +168,12 @@ struct Remembering {
 // The fluid side (mesh, search grid, fitted basis) of the last call; on a space whose values are the same
 // on every element, its fit's check takes them from element 0 (SpaceBasis::remember_values).
 struct FluidCache : dlmfsi_ff::SideCache<FESpace, SpaceBasis, dlmfsi::FluidSide> {
-  const dlmfsi::FluidSide& get(const FESpace& vh, const std::vector<int>& comps) {
+  // parts: as SpaceBasis's
+  const dlmfsi::FluidSide& get(const FESpace& vh, const std::vector<int>& comps,
+                               const std::vector<const TypeOfFE*>& parts = {}) {
     if (holds(vh, comps)) return *side;
     side.reset();
-    basis.reset(new SpaceBasis(vh));
+    basis.reset(new SpaceBasis(vh, parts));
     {
       const Remembering on(*basis, basis->same_everywhere());
       side.reset(new dlmfsi::FluidSide(dlmfsi_ff::convert(vh.Th), *basis, comps));
@@ -165,11 +208,13 @@ struct SolidCache : dlmfsi_ff::SolidCacheOf<FESpace, SpaceBasis, dlmfsi::SolidSi
   // The side, on its space's basis with the dofs tabulated; with remember (the map's fits will be on other
   // components of this space), or on a space whose values are the same on every element, the values at the
   // fit's check point remembered while the side is prepared.
-  const dlmfsi::SolidSide& get(const FESpace& vs, const std::vector<int>& comps, bool remember) {
+  // parts: as SpaceBasis's.
+  const dlmfsi::SolidSide& get(const FESpace& vs, const std::vector<int>& comps, bool remember,
+                               const std::vector<const TypeOfFE*>& parts) {
     if (holds(vs, comps)) return *side;
     fits.clear();
     side.reset();
-    basis.reset(new SpaceBasis(vs));
+    basis.reset(new SpaceBasis(vs, parts));
     basis->tabulate_dofs();  // before the side, which reads every element's dofs too
     {
       const Remembering on(*basis, remember || basis->same_everywhere());
@@ -314,8 +359,10 @@ std::uint64_t DlmfsiOp::map_checksum(Stack stack) const {
 }
 
 const dlmfsi::CsrMatrix& DlmfsiOp::assemble(Stack stack, const dlmfsi::CouplingOptions& opt) const {
-  FESpace* vf = **GetAny<pfes*>((*fluid_space)(stack));
-  FESpace* vs = **GetAny<pfes*>((*solid_space)(stack));
+  v_fes* const declared_vf = *GetAny<pfes*>((*fluid_space)(stack));
+  v_fes* const declared_vs = *GetAny<pfes*>((*solid_space)(stack));
+  FESpace* vf = *declared_vf;
+  FESpace* vs = *declared_vs;
   if (!vf || !vs) throw dlmfsi::Error("a space is not defined");
   const pfer px = GetAny<pfer>((*map_x)(stack)), py = GetAny<pfer>((*map_y)(stack));
   for (const pfer* p : {&px, &py})
@@ -328,13 +375,13 @@ const dlmfsi::CsrMatrix& DlmfsiOp::assemble(Stack stack, const dlmfsi::CouplingO
   const KN<double>& cx = *px.first->x();
   const KN<double>& cy = *py.first->x();
 
-  const dlmfsi::FluidSide& fluid = fluid_cache().get(*vf, opt.fluid_components);
+  const dlmfsi::FluidSide& fluid = fluid_cache().get(*vf, opt.fluid_components, space_parts(declared_vf, *vf));
   SolidCache& cache = solid_cache();
   // The map on other components of the multiplier's space: its fits check the elements at the point where
   // the side's fit does.
   const bool map_on_side = (&sx == vs && opt.solid_components != std::vector<int>{px.second}) ||
                            (&sy == vs && opt.solid_components != std::vector<int>{py.second});
-  const dlmfsi::SolidSide& solid = cache.get(*vs, opt.solid_components, map_on_side);
+  const dlmfsi::SolidSide& solid = cache.get(*vs, opt.solid_components, map_on_side, space_parts(declared_vs, *vs));
   cache.trim_fits();
   const SpaceBasis map_x_basis(sx), map_y_basis(sy);
   const int degree = dlmfsi::FieldMap::fit_degree(map_x_basis, px.second, map_y_basis, py.second);
