@@ -745,21 +745,36 @@ namespace {
 bool filtered_piece(const Point3 a[4], const Point3 b[4], unsigned& beyond, Piece3& out) {
   TetFaces b_faces;
   b_faces.set(b);
+  // a's vertices by axis: the four values against one plane in one pass over arrays
+  const double ax[4] = {a[0].x, a[1].x, a[2].x, a[3].x}, ay[4] = {a[0].y, a[1].y, a[2].y, a[3].y},
+               az[4] = {a[0].z, a[1].z, a[2].z, a[3].z};
   double d[4][4], e[4][4];
   unsigned inner = 0, outer = 0;  // bit 4 j + i: a's vertex i certainly inside, outside b's face j
-  for (int j = 0; j < 4; ++j)
-    for (int i = 0; i < 4; ++i) {
-      d[j][i] = b_faces.face[j].estimate(a[i], e[j][i]);
-      inner |= static_cast<unsigned>(d[j][i] > e[j][i]) << (4 * j + i);
-      outer |= static_cast<unsigned>(-d[j][i] > e[j][i]) << (4 * j + i);
-    }
-  if ((inner | outer) != 0xFFFFu) return false;  // a side within its bound
   beyond = 0;
   out.n = 0;
   for (int j = 0; j < 4; ++j) {
-    if ((inner >> (4 * j) & 0xFu) == 0) return true;  // face j's plane separates
-    beyond |= static_cast<unsigned>((outer >> (4 * j) & 0xFu) != 0) << j;
+    // PlaneSide::estimate for the four vertices (the same operations in the same order)
+    const PlaneSide& f = b_faces.face[j];
+    double* dj = d[j];
+    double* ej = e[j];
+    for (int i = 0; i < 4; ++i) {
+      const double wx = ax[i] - f.p.x, wy = ay[i] - f.p.y, wz = az[i] - f.p.z;
+      dj[i] = wx * f.n.x + wy * f.n.y + wz * f.n.z;
+      const double fx = std::fabs(wx), fy = std::fabs(wy), fz = std::fabs(wz);
+      ej[i] = orient3d_bound(fx * f.pn.x + fy * f.pn.y + fz * f.pn.z, 1 + fx + fy + fz);
+    }
+    unsigned in = 0, out_j = 0;
+    for (int i = 0; i < 4; ++i) {
+      in |= static_cast<unsigned>(dj[i] > ej[i]) << i;
+      out_j |= static_cast<unsigned>(-dj[i] > ej[i]) << i;
+    }
+    // face j's plane separates (all four certainly outside): empty, whatever the other planes' sides
+    if (out_j == 0xFu) return true;
+    inner |= in << (4 * j);
+    outer |= out_j << (4 * j);
   }
+  if ((inner | outer) != 0xFFFFu) return false;  // a side within its bound
+  for (int j = 0; j < 4; ++j) beyond |= static_cast<unsigned>((outer >> (4 * j) & 0xFu) != 0) << j;
   if (beyond == 0) {  // a in closed b
     out = whole(a, 0);
     return true;

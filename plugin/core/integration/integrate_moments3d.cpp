@@ -86,12 +86,16 @@ Moments moments(const Piece3& piece) {
 
 }  // namespace
 
-const MomentIntegrator3::SolidTerms& MomentIntegrator3::solid_terms(const MappedTet& mt, const double* sg) {
+const MomentIntegrator3::SolidTerms& MomentIntegrator3::solid_terms(const MappedTet& mt, Point3 xi) {
   const double(&j)[3][3] = mt.affine_value.jac;
   SolidTerms& st = solid_terms_;
   if (st.k == mt.k && std::memcmp(st.jac, j, sizeof st.jac) == 0 && st.det == mt.affine_det) return st;
   st.k = mt.k;
   std::memcpy(st.jac, j, sizeof st.jac);
+  // the gradients in s (degree <= 1: the same at every point); the values at xi are not kept
+  double values[kMaxFunctions];
+  integrand_.multiplier.evaluate_affine(mt.k, xi, values, st.gradient_s);
+  const double* sg = st.gradient_s;
   const double det = st.det = mt.affine_det;
   st.mass = integrand_.c2 / det;
   const double cof[3][3] = {{j[1][1] * j[2][2] - j[1][2] * j[2][1], j[1][2] * j[2][0] - j[1][0] * j[2][2], j[1][0] * j[2][1] - j[1][1] * j[2][0]},
@@ -119,13 +123,24 @@ double MomentIntegrator3::integrate(const ClippedImage3& image, int kf, const Pi
   const Moments mo = moments(piece);
   counts_.points += 1;
   if (!(mo.volume > 0)) return mo.volume;
-  double fv[kMaxFunctions], fg[3 * kMaxFunctions], sv[kMaxFunctions], sg[3 * kMaxFunctions];
+  double fv[kMaxFunctions], fg[3 * kMaxFunctions], sv[kMaxFunctions];
   // the centroid relative to image.origin, as the piece
   integrand_.fluid.evaluate_affine(kf, integrand_.fluid.to_reference(kf, mo.centroid, image.origin), fv, fg);
-  integrand_.multiplier.evaluate_affine(mt.k, mt.affine_reference(mo.centroid, image.origin), sv, sg);
+  const Point3 xi = mt.affine_reference(mo.centroid, image.origin);
+  const SolidTerms& st = solid_terms(mt, xi);
+  const double* sg = st.gradient_s;
+  // the multiplier's values at the centroid, as PolynomialBasis3::evaluate_affine forms them (monomials 1, xi1,
+  // xi2, xi3, or a constant), without its gradients (kept per tetrahedron)
+  {
+    const int terms = integrand_.multiplier.degree() == 0 ? 1 : 4;  // monomial_count3(degree)
+    const double* c = integrand_.multiplier.coefficients(mt.k);
+    if (terms == 1)
+      for (int f = 0; f < multiplier_functions_; ++f) sv[f] = c[f];
+    else
+      for (int f = 0; f < multiplier_functions_; ++f, c += terms) sv[f] = c[0] + c[1] * xi.x + c[2] * xi.y + c[3] * xi.z;
+  }
   const double(&j)[3][3] = mt.affine_value.jac;
   const double det = mt.affine_det, stiff = integrand_.c1 * mo.volume / det;
-  const SolidTerms& st = solid_terms(mt, sg);
   const double mass = st.mass;
   // per multiplier function: its gradient in y times 2^e
   double sy[3 * kMaxFunctions];

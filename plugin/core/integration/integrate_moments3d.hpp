@@ -27,11 +27,11 @@ class MomentIntegrator3 : public PieceIntegrator3 {
   struct SolidTerms {
     int k = -1;
     double jac[3][3] = {}, det = 0, mass = 0;
-    double gradient_y[3 * kMaxFunctions];
+    double gradient_s[3 * kMaxFunctions], gradient_y[3 * kMaxFunctions];
   };
-  // The terms of mt, formed when mt is not the last piece's tetrahedron; sg: its multiplier functions'
-  // gradients in s.
-  const SolidTerms& solid_terms(const MappedTet& mt, const double* sg);
+  // The terms of mt, formed when mt is not the last piece's tetrahedron (its multiplier functions' gradients
+  // in s evaluated at xi, a point of it).
+  const SolidTerms& solid_terms(const MappedTet& mt, Point3 xi);
 
   const Integrand3& integrand_;
   CouplingReport& counts_;
