@@ -162,6 +162,15 @@ double MomentIntegrator3::integrate(const ClippedImage3& image, int kf, const Pi
     const ComponentPair& pair = pairs[p];
     const int *fluid = pair.fluid_functions.data(), *solid = pair.solid_functions.data();
     const int nf = static_cast<int>(pair.fluid_functions.size()), ns = static_cast<int>(pair.solid_functions.size());
+    // the pair's solid functions' value and gradient terms in column order, gathered once for its nf columns
+    double s0[kMaxFunctions], s1[kMaxFunctions], s2[kMaxFunctions], s3[kMaxFunctions];
+    for (int b = 0; b < ns; ++b) {
+      const int g = solid[b];
+      s0[b] = sv[g];
+      s1[b] = sy[3 * g];
+      s2[b] = sy[3 * g + 1];
+      s3[b] = sy[3 * g + 2];
+    }
     for (int a = 0; a < nf; ++a) {
       const int f = fluid[a];
       const double va = fa[f], m0 = fm[3 * f], m1 = fm[3 * f + 1], m2 = fm[3 * f + 2];
@@ -173,10 +182,7 @@ double MomentIntegrator3::integrate(const ClippedImage3& image, int kf, const Pi
           col[b] += sum + (fc[3 * f] * sg[3 * g] + fc[3 * f + 1] * sg[3 * g + 1] + fc[3 * f + 2] * sg[3 * g + 2]);
         }
       } else {
-        for (int b = 0; b < ns; ++b) {
-          const int g = solid[b];
-          col[b] += va * sv[g] + m0 * sy[3 * g] + m1 * sy[3 * g + 1] + m2 * sy[3 * g + 2];
-        }
+        for (int b = 0; b < ns; ++b) col[b] += va * s0[b] + m0 * s1[b] + m1 * s2[b] + m2 * s3[b];
       }
     }
   }

@@ -13,15 +13,19 @@ LocalBlock::LocalBlock(int multiplier_dofs, std::vector<int> used_rows, int flui
 void LocalBlock::enter_fluid_element(const int* dofs) {
   for (int j : used_fluid_dofs_) {
     const int g = dofs[j];
-    const int columns = static_cast<int>(column_dofs_.size());
-    int c = 0;
-    while (c < columns && column_dofs_[c] != g) ++c;
-    if (c == columns) {  // a new column: its entries are zero already
+    if (static_cast<size_t>(g) >= mark_of_dof_.size()) {
+      const size_t size = std::max(static_cast<size_t>(g) + 1, 2 * mark_of_dof_.size());
+      mark_of_dof_.resize(size, 0u);
+      column_at_dof_.resize(size);
+    }
+    if (mark_of_dof_[g] != block_mark_) {  // a new column: its entries are zero already
+      mark_of_dof_[g] = block_mark_;
+      column_at_dof_[g] = static_cast<int>(column_dofs_.size());
       column_dofs_.push_back(g);
       const size_t needed = column_dofs_.size() * rows_;
       if (entries_.size() < needed) entries_.resize(2 * needed, 0.0);
     }
-    column_of_[j] = c;
+    column_of_[j] = column_at_dof_[g];
   }
 }
 

@@ -21,13 +21,13 @@ class LocalBlock {
   // column yet.
   void start(const int* dofs) {
     std::copy(dofs, dofs + rows_, row_dofs_.begin());
-    column_dofs_.clear();
+    new_block();
   }
   // The same from the multiplier space's dofs of solid element k.
   template <class Space>
   void start(const Space& multiplier, int k) {
     multiplier.dofs(k, row_dofs_.data());
-    column_dofs_.clear();
+    new_block();
   }
 
   // Enters a fluid element whose local dofs have the global dofs `dofs`: each used local dof is given the
@@ -59,11 +59,23 @@ class LocalBlock {
   size_t used_entries_per_fluid_element() const { return used_rows_.size() * used_fluid_dofs_.size(); }
 
  private:
+  // No column yet: the columns' dofs cleared, the marks of the last block's dofs outdated.
+  void new_block() {
+    column_dofs_.clear();
+    if (++block_mark_ == 0) {  // wrapped: clear the marks
+      std::fill(mark_of_dof_.begin(), mark_of_dof_.end(), 0u);
+      block_mark_ = 1;
+    }
+  }
   int rows_;
   std::vector<int> used_rows_, used_fluid_dofs_;
   std::vector<int> row_dofs_;     // global multiplier dof of each row
   std::vector<int> column_dofs_;  // global fluid dof of each column
   std::vector<int> column_of_;    // per local fluid dof of the element entered last: its column
+  // Per global fluid dof: its column in this block when mark_of_dof_[dof] == block_mark_ (grown on demand).
+  std::vector<int> column_at_dof_;
+  std::vector<unsigned> mark_of_dof_;
+  unsigned block_mark_ = 1;  // the marks start at 0: no dof marked
   std::vector<int> by_dof_;       // scatter(InPlaceSum&, ...): the columns by increasing dof
   std::vector<int> row_columns_;  // scatter(RowSum&, ...): one row's non-zero entries
   std::vector<double> row_values_;
