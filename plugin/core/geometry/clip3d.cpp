@@ -740,39 +740,52 @@ class SimplePolytope {
 
 namespace {
 
+// Four doubles handled as one value (GCC and Clang vector extensions: two SSE2 registers on x86-64, or
+// one AVX register), and the lane-wise comparisons' masks (-1 true, 0 false).
+typedef double Lanes4 __attribute__((vector_size(32)));
+typedef long long Mask4 __attribute__((vector_size(32)));
+// |v| lane by lane (the sign bits cleared), written out where used: a function taking or returning a
+// 32-byte vector would have an ABI that depends on AVX.
+constexpr long long kNoSign = 0x7FFFFFFFFFFFFFFFLL;
 // clip_filtered's floating-point path: false when a side is uncertain (then out is unset), else out is the
 // piece (n = 0 when empty) and beyond is set.
 bool filtered_piece(const Point3 a[4], const Point3 b[4], unsigned& beyond, Piece3& out) {
   TetFaces b_faces;
   b_faces.set(b);
-  // a's vertices by axis: the four values against one plane in one pass over arrays
-  const double ax[4] = {a[0].x, a[1].x, a[2].x, a[3].x}, ay[4] = {a[0].y, a[1].y, a[2].y, a[3].y},
-               az[4] = {a[0].z, a[1].z, a[2].z, a[3].z};
+  // a's vertices by axis, four lanes: the four values against one plane at once
+  const Lanes4 ax = {a[0].x, a[1].x, a[2].x, a[3].x}, ay = {a[0].y, a[1].y, a[2].y, a[3].y},
+               az = {a[0].z, a[1].z, a[2].z, a[3].z};
   double d[4][4], e[4][4];
   unsigned inner = 0, outer = 0;  // bit 4 j + i: a's vertex i certainly inside, outside b's face j
+  Mask4 bounded = {-1, -1, -1, -1};
   beyond = 0;
   out.n = 0;
   for (int j = 0; j < 4; ++j) {
-    // PlaneSide::estimate for the four vertices (the same operations in the same order)
+    // PlaneSide::estimate for the four vertices (the same operations in the same order); the bound
+    // kRelative permanent of orient3d_bound where permanent >= 2^-900 s, else (tiny or NaN) the exact clip
     const PlaneSide& f = b_faces.face[j];
-    double* dj = d[j];
-    double* ej = e[j];
-    for (int i = 0; i < 4; ++i) {
-      const double wx = ax[i] - f.p.x, wy = ay[i] - f.p.y, wz = az[i] - f.p.z;
-      dj[i] = wx * f.n.x + wy * f.n.y + wz * f.n.z;
-      const double fx = std::fabs(wx), fy = std::fabs(wy), fz = std::fabs(wz);
-      ej[i] = orient3d_bound(fx * f.pn.x + fy * f.pn.y + fz * f.pn.z, 1 + fx + fy + fz);
-    }
+    const Lanes4 wx = ax - f.p.x, wy = ay - f.p.y, wz = az - f.p.z;
+    const Lanes4 dj = wx * f.n.x + wy * f.n.y + wz * f.n.z;
+    const Lanes4 fx = reinterpret_cast<Lanes4>(reinterpret_cast<Mask4>(wx) & kNoSign),
+                 fy = reinterpret_cast<Lanes4>(reinterpret_cast<Mask4>(wy) & kNoSign),
+                 fz = reinterpret_cast<Lanes4>(reinterpret_cast<Mask4>(wz) & kNoSign);
+    const Lanes4 permanent = fx * f.pn.x + fy * f.pn.y + fz * f.pn.z;
+    const Lanes4 ej = kOrient3dRelativeBound * permanent;
+    bounded &= permanent >= 0x1p-900 * (1 + fx + fy + fz);
+    const Mask4 in_mask = dj > ej, out_mask = -dj > ej;
     unsigned in = 0, out_j = 0;
     for (int i = 0; i < 4; ++i) {
-      in |= static_cast<unsigned>(dj[i] > ej[i]) << i;
-      out_j |= static_cast<unsigned>(-dj[i] > ej[i]) << i;
+      d[j][i] = dj[i];
+      e[j][i] = ej[i];
+      in |= static_cast<unsigned>(in_mask[i] & 1) << i;
+      out_j |= static_cast<unsigned>(out_mask[i] & 1) << i;
     }
     // face j's plane separates (all four certainly outside): empty, whatever the other planes' sides
-    if (out_j == 0xFu) return true;
+    if (out_j == 0xFu && (bounded[0] & bounded[1] & bounded[2] & bounded[3])) return true;
     inner |= in << (4 * j);
     outer |= out_j << (4 * j);
   }
+  if (!(bounded[0] & bounded[1] & bounded[2] & bounded[3])) return false;
   if ((inner | outer) != 0xFFFFu) return false;  // a side within its bound
   for (int j = 0; j < 4; ++j) beyond |= static_cast<unsigned>((outer >> (4 * j) & 0xFu) != 0) << j;
   if (beyond == 0) {  // a in closed b

@@ -31,9 +31,10 @@ int orient3d_exact(Point3 a, Point3 b, Point3 c, Point3 d);
 // constant raised by 2^-40 covers both; below that (only for tiny coordinates or differences) +inf: the exact
 // evaluation decides. So the bound never multiplies a subnormal number (about 50 ns on this machine's Xeon,
 // against 1 ns). Inf or NaN input gives inf or NaN.
+constexpr double kOrient3dRelativeBound = 7.7715611723761e-16 * (1 + 0x1p-40);
 inline double orient3d_bound(double permanent, double s) {
-  constexpr double kRelative = 7.7715611723761e-16 * (1 + 0x1p-40);
-  return permanent >= 0x1p-900 * s ? kRelative * permanent : (permanent == permanent ? HUGE_VAL : permanent);
+  return permanent >= 0x1p-900 * s ? kOrient3dRelativeBound * permanent
+                                   : (permanent == permanent ? HUGE_VAL : permanent);
 }
 
 // The determinant det [b - a, c - a, d - a] in floating point, and a bound on its error (orient3d_bound).
