@@ -46,6 +46,18 @@ inline double power_of_two(int e) {
   return out;
 }
 
+// Do the nine doubles at p and q agree bit for bit (std::memcmp's test, without its library call)?
+inline bool same_bits(const double* p, const double* q) {
+  std::uint64_t differ = 0;
+  for (int i = 0; i < 9; ++i) {
+    std::uint64_t a, b;
+    std::memcpy(&a, p + i, sizeof a);
+    std::memcpy(&b, q + i, sizeof b);
+    differ |= a ^ b;
+  }
+  return differ == 0;
+}
+
 Moments moments(const Piece3& piece) {
   Moments out;
   const int apex = piece.apex();  // the triangulation's: every tetrahedron's first corner
@@ -89,7 +101,7 @@ Moments moments(const Piece3& piece) {
 const MomentIntegrator3::SolidTerms& MomentIntegrator3::solid_terms(const MappedTet& mt, Point3 xi) {
   const double(&j)[3][3] = mt.affine_value.jac;
   SolidTerms& st = solid_terms_;
-  if (st.k == mt.k && std::memcmp(st.jac, j, sizeof st.jac) == 0 && st.det == mt.affine_det) return st;
+  if (st.k == mt.k && same_bits(&st.jac[0][0], &j[0][0]) && st.det == mt.affine_det) return st;
   st.k = mt.k;
   std::memcpy(st.jac, j, sizeof st.jac);
   // the gradients in s (degree <= 1: the same at every point); the values at xi are not kept
