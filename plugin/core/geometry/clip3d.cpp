@@ -619,17 +619,18 @@ class SimplePolytope {
   // plus 3 eps for t's own rounding.
   // The cut by plane j; the values and bounds carried to the new vertices are those of the later planes
   // (j a template argument: a fixed loop over them).
-  Outcome cut(int j) {
+  // later: the planes cut after this one (bit m); the others' values are never read, and not carried.
+  Outcome cut(int j, unsigned later) {
     switch (j) {
-      case 0: return cut_by<0>();
-      case 1: return cut_by<1>();
-      case 2: return cut_by<2>();
-      default: return cut_by<3>();
+      case 0: return cut_by<0>(later);
+      case 1: return cut_by<1>(later);
+      case 2: return cut_by<2>(later);
+      default: return cut_by<3>(later);
     }
   }
 
   template <int j>
-  Outcome cut_by() {
+  Outcome cut_by(unsigned later) {
     unsigned inside = 0, outside = 0;  // certified
     for (unsigned live = live_; live != 0; live &= live - 1) {
       const int k = __builtin_ctz(live);
@@ -657,6 +658,7 @@ class SimplePolytope {
         w.y = crossing.y;
         w.z = crossing.z;
         for (int m = j + 1; m < 4; ++m) {
+          if (!(later >> m & 1u)) continue;
           const double change = o.d[m] - u.d[m];
           w.d[m] = u.d[m] + t * change;
           w.e[m] = (std::max(u.e[m], o.e[m]) + dt * std::fabs(change) +
@@ -796,7 +798,7 @@ bool filtered_piece(const Point3 a[4], const Point3 b[4], unsigned& beyond, Piec
   polytope.start(a, d, e);
   for (int j = 0; j < 4; ++j) {
     if (!(beyond >> j & 1u)) continue;
-    const SimplePolytope::Outcome o = polytope.cut(j);
+    const SimplePolytope::Outcome o = polytope.cut(j, beyond & ~((2u << j) - 1));
     if (o == SimplePolytope::kEmpty) return true;
     if (o == SimplePolytope::kUncertain) return false;
   }
