@@ -707,6 +707,7 @@ class SimplePolytope {
       out.planes[n++] = static_cast<unsigned char>(v_[k].planes);
     }
     out.n = n;
+    static_assert(3 * Piece3::kMaxVertices <= Piece3::kMaxFaceIndices, "a face walk's steps fit face_index");
     unsigned walked[kCapacity] = {};  // bit s: the edge from k to its neighbour s
     int used = 0;
     out.faces = 0;
@@ -716,10 +717,12 @@ class SimplePolytope {
         if (out.faces == Piece3::kMaxFaces) return false;
         int current = k, slot = s;
         unsigned on = 0;
+        // Each step marks one (vertex, neighbour) pair and the walk stops at a marked one: at most 3 n <= 48
+        // steps in all, within kMaxFaceIndices.
         do {
-          if (used == Piece3::kMaxFaceIndices) return false;
-          out.face_index[used++] = static_cast<unsigned char>(index[current]);
-          on |= 1u << index[current];
+          const int i = index[current];
+          out.face_index[used++] = static_cast<unsigned char>(i);
+          on |= 1u << i;
           walked[current] |= 1u << slot;
           const SimpleVertex& c = v_[current];
           current = c.nb[slot];
