@@ -752,6 +752,18 @@ typedef long long Mask4 __attribute__((vector_size(32)));
 // |v| lane by lane (the sign bits cleared), written out where used: a function taking or returning a
 // 32-byte vector would have an ABI that depends on AVX.
 constexpr long long kNoSign = 0x7FFFFFFFFFFFFFFFLL;
+// Bit i set where lane i of m is true (-1): the sign bits, two lanes at a time where SSE2 has movmskpd.
+inline unsigned lane_bits(const Mask4& m) {
+#if defined(__SSE2__)
+  typedef double Lanes2 __attribute__((vector_size(16)));
+  const Lanes4 v = reinterpret_cast<Lanes4>(m);
+  const Lanes2 low = {v[0], v[1]}, high = {v[2], v[3]};
+  return static_cast<unsigned>(__builtin_ia32_movmskpd(low) | __builtin_ia32_movmskpd(high) << 2);
+#else
+  return static_cast<unsigned>(m[0] & 1) | static_cast<unsigned>(m[1] & 1) << 1 | static_cast<unsigned>(m[2] & 1) << 2 |
+         static_cast<unsigned>(m[3] & 1) << 3;
+#endif
+}
 // clip_filtered's floating-point path: false when a side is uncertain (then out is unset), else out is the
 // piece (n = 0 when empty) and beyond is set.
 bool filtered_piece(const Point3 a[4], const Point3 b[4], unsigned& beyond, Piece3& out) {
@@ -777,13 +789,10 @@ bool filtered_piece(const Point3 a[4], const Point3 b[4], unsigned& beyond, Piec
     const Lanes4 permanent = fx * f.pn.x + fy * f.pn.y + fz * f.pn.z;
     const Lanes4 ej = kOrient3dRelativeBound * permanent;
     bounded &= permanent >= 0x1p-900 * (1 + fx + fy + fz);
-    const Mask4 in_mask = dj > ej, out_mask = -dj > ej;
-    unsigned in = 0, out_j = 0;
+    const unsigned in = lane_bits(dj > ej), out_j = lane_bits(-dj > ej);
     for (int i = 0; i < 4; ++i) {
       d[j][i] = dj[i];
       e[j][i] = ej[i];
-      in |= static_cast<unsigned>(in_mask[i] & 1) << i;
-      out_j |= static_cast<unsigned>(out_mask[i] & 1) << i;
     }
     // face j's plane separates (all four certainly outside): empty, whatever the other planes' sides
     if (out_j == 0xFu && (bounded[0] & bounded[1] & bounded[2] & bounded[3])) return true;
