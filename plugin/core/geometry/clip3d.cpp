@@ -620,19 +620,20 @@ class SimplePolytope {
   // The cut by plane j; the values and bounds carried to the new vertices are those of the later planes
   // (j a template argument: a fixed loop over them).
   // later: the planes cut after this one (bit m); the others' values are never read, and not carried.
-  Outcome cut(int j, unsigned later) {
+  // inside4, outside4: a's vertices (0-3) certainly inside and outside plane j, already known (bit i).
+  Outcome cut(int j, unsigned later, unsigned inside4, unsigned outside4) {
     switch (j) {
-      case 0: return cut_by<0>(later);
-      case 1: return cut_by<1>(later);
-      case 2: return cut_by<2>(later);
-      default: return cut_by<3>(later);
+      case 0: return cut_by<0>(later, inside4, outside4);
+      case 1: return cut_by<1>(later, inside4, outside4);
+      case 2: return cut_by<2>(later, inside4, outside4);
+      default: return cut_by<3>(later, inside4, outside4);
     }
   }
 
   template <int j>
-  Outcome cut_by(unsigned later) {
-    unsigned inside = 0, outside = 0;  // certified
-    for (unsigned live = live_; live != 0; live &= live - 1) {
+  Outcome cut_by(unsigned later, unsigned inside4, unsigned outside4) {
+    unsigned inside = inside4 & live_, outside = outside4 & live_;  // certified
+    for (unsigned live = live_ & ~0xFu; live != 0; live &= live - 1) {  // the crossings made so far
       const int k = __builtin_ctz(live);
       inside |= static_cast<unsigned>(v_[k].d[j] > v_[k].e[j]) << k;
       outside |= static_cast<unsigned>(-v_[k].d[j] > v_[k].e[j]) << k;
@@ -810,7 +811,8 @@ bool filtered_piece(const Point3 a[4], const Point3 b[4], unsigned& beyond, Piec
   polytope.start(a, d, e);
   for (int j = 0; j < 4; ++j) {
     if (!(beyond >> j & 1u)) continue;
-    const SimplePolytope::Outcome o = polytope.cut(j, beyond & ~((2u << j) - 1));
+    const SimplePolytope::Outcome o =
+        polytope.cut(j, beyond & ~((2u << j) - 1), inner >> (4 * j) & 0xFu, outer >> (4 * j) & 0xFu);
     if (o == SimplePolytope::kEmpty) return true;
     if (o == SimplePolytope::kUncertain) return false;
   }
