@@ -248,13 +248,14 @@ inline double unit_scale(const Point3 (&points)[N]) {
 
 // The point p + t (q - p) = q + (1 - t) (p - q), t = vp / (vp - vq), for the signed distances vp, vq (of
 // opposite signs) of p and q from the line or plane crossed: from the endpoint nearer to it.
+// Selections rather than a branch (which end is nearer is data, not predictable).
 inline Point3 between(Point3 p, Point3 q, double vp, double vq) {
-  if (std::fabs(vp) <= std::fabs(vq)) {
-    const double t = std::min(1.0, std::max(0.0, vp / (vp - vq)));  // also maps NaN to 0
-    return p + t * (q - p);
-  }
-  const double t = std::min(1.0, std::max(0.0, vq / (vq - vp)));
-  return q + t * (p - q);
+  const bool from_p = std::fabs(vp) <= std::fabs(vq);
+  const Point3 a{from_p ? p.x : q.x, from_p ? p.y : q.y, from_p ? p.z : q.z},
+      b{from_p ? q.x : p.x, from_p ? q.y : p.y, from_p ? q.z : p.z};
+  const double va = from_p ? vp : vq, vb = from_p ? vq : vp;
+  const double t = std::min(1.0, std::max(0.0, va / (va - vb)));  // also maps NaN to 0
+  return a + t * (b - a);
 }
 
 }  // namespace
@@ -619,19 +620,18 @@ class SimplePolytope {
   // plus 3 eps for t's own rounding.
   // The cut by plane j; the values and bounds carried to the new vertices are those of the later planes
   // (j a template argument: a fixed loop over them).
-  // later: the planes cut after this one (bit m); the others' values are never read, and not carried.
   // inside4, outside4: a's vertices (0-3) certainly inside and outside plane j, already known (bit i).
-  Outcome cut(int j, unsigned later, unsigned inside4, unsigned outside4) {
+  Outcome cut(int j, unsigned inside4, unsigned outside4) {
     switch (j) {
-      case 0: return cut_by<0>(later, inside4, outside4);
-      case 1: return cut_by<1>(later, inside4, outside4);
-      case 2: return cut_by<2>(later, inside4, outside4);
-      default: return cut_by<3>(later, inside4, outside4);
+      case 0: return cut_by<0>(inside4, outside4);
+      case 1: return cut_by<1>(inside4, outside4);
+      case 2: return cut_by<2>(inside4, outside4);
+      default: return cut_by<3>(inside4, outside4);
     }
   }
 
   template <int j>
-  Outcome cut_by(unsigned later, unsigned inside4, unsigned outside4) {
+  Outcome cut_by(unsigned inside4, unsigned outside4) {
     unsigned inside = inside4 & live_, outside = outside4 & live_;  // certified
     for (unsigned live = live_ & ~0xFu; live != 0; live &= live - 1) {  // the crossings made so far
       const int k = __builtin_ctz(live);
@@ -659,7 +659,6 @@ class SimplePolytope {
         w.y = crossing.y;
         w.z = crossing.z;
         for (int m = j + 1; m < 4; ++m) {
-          if (!(later >> m & 1u)) continue;
           const double change = o.d[m] - u.d[m];
           w.d[m] = u.d[m] + t * change;
           w.e[m] = (std::max(u.e[m], o.e[m]) + dt * std::fabs(change) +
@@ -812,7 +811,7 @@ bool filtered_piece(const Point3 a[4], const Point3 b[4], unsigned& beyond, Piec
   for (int j = 0; j < 4; ++j) {
     if (!(beyond >> j & 1u)) continue;
     const SimplePolytope::Outcome o =
-        polytope.cut(j, beyond & ~((2u << j) - 1), inner >> (4 * j) & 0xFu, outer >> (4 * j) & 0xFu);
+        polytope.cut(j, inner >> (4 * j) & 0xFu, outer >> (4 * j) & 0xFu);
     if (o == SimplePolytope::kEmpty) return true;
     if (o == SimplePolytope::kUncertain) return false;
   }
