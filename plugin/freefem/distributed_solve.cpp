@@ -315,10 +315,11 @@ std::string run(Kept& k, int job, const char* phase) {
 // The pivot order of the next analysis: METIS's nested dissection of the whole pattern, gathered on the host
 // (fill_ordering.hpp), given to MUMPS (ICNTL(7) = 1); MUMPS's automatic choice (ICNTL(7) = 7) in a build
 // without METIS, for small systems, when METIS gives none, and with ordering="mumps", whose order is then kept
-// (keep_order); MUMPS's AMD (ICNTL(7) = 0) afresh at every analysis with ordering="amd". A matrix of the size of the last one ordered
-// (a new pattern of the same unknowns: the coupling of a solid that moved) takes the kept order instead, and
-// MUMPS only redoes the symbolic factorization, until the factors outgrow the order (kOrderFill, checked after
-// the analysis). Collective; the same for any number of processes (the same pattern).
+// (keep_order); MUMPS's AMD (ICNTL(7) = 0) afresh at every analysis with ordering="amd". Otherwise a matrix of
+// the size of the last one ordered (a new pattern of the same unknowns: the coupling of a solid that moved)
+// takes the kept order instead, and MUMPS only redoes the symbolic factorization, until the factors outgrow the
+// order (kOrderFill, checked after the analysis). Collective; the same for any number of processes (the same
+// pattern).
 void choose_ordering(Kept& k, int rank) {
   static_assert(sizeof(MUMPS_INT) == sizeof(int), "32-bit MUMPS indices");
   if (k.order_kind == Kept::Ordering::amd) {   // fresh at every analysis, nothing kept
