@@ -1,6 +1,7 @@
 #include "fe/lattice.hpp"
 
 #include <cmath>
+#include <mutex>
 #include <utility>
 
 #include "fe/matrix_inverse.hpp"
@@ -21,25 +22,24 @@ Point lattice_point(int d, int m) {
   return {static_cast<double>(a) / d, static_cast<double>(b) / d};
 }
 
+// Each degree's inverse on first use (std::call_once: threads may ask together), not all of them at once.
 const std::vector<double>& vandermonde_inverse(int d) {
-  static const auto table = [] {
-    std::vector<std::vector<double>> inv(kMaxLatticeDegree + 1);
-    for (int deg = 0; deg <= kMaxLatticeDegree; ++deg) {
-      const int n = monomial_count(deg);
-      std::vector<double> v(static_cast<size_t>(n) * n);  // V[p][m] = monomial m at lattice point p
-      for (int p = 0; p < n; ++p) {
-        const Point x = lattice_point(deg, p);
-        for (int m = 0; m < n; ++m) {
-          int ea, eb;
-          monomial_exponents(m, ea, eb);
-          v[p * n + m] = std::pow(x.x, ea) * std::pow(x.y, eb);
-        }
+  static std::vector<double> inv[kMaxLatticeDegree + 1];
+  static std::once_flag made[kMaxLatticeDegree + 1];
+  std::call_once(made[d], [d] {
+    const int n = monomial_count(d);
+    std::vector<double> v(static_cast<size_t>(n) * n);  // V[p][m] = monomial m at lattice point p
+    for (int p = 0; p < n; ++p) {
+      const Point x = lattice_point(d, p);
+      for (int m = 0; m < n; ++m) {
+        int ea, eb;
+        monomial_exponents(m, ea, eb);
+        v[p * n + m] = std::pow(x.x, ea) * std::pow(x.y, eb);
       }
-      inv[deg] = inverse(v, n);
     }
-    return inv;
-  }();
-  return table[d];
+    inv[d] = inverse(v, n);
+  });
+  return inv[d];
 }
 
 }  // namespace dlmfsi

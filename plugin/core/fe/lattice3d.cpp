@@ -1,6 +1,7 @@
 #include "fe/lattice3d.hpp"
 
 #include <cmath>
+#include <mutex>
 #include <utility>
 
 #include "fe/matrix_inverse.hpp"
@@ -75,18 +76,18 @@ const std::vector<MonomialDerivative3>& monomial_derivatives3(int d) {
   return table[d];
 }
 
+// Each degree's inverse on first use (std::call_once: threads may ask together), not all of them at once: a
+// process that fits P1 spaces only does not invert the degree-8 Vandermonde matrix (165 x 165).
 const std::vector<double>& vandermonde_inverse3(int d) {
-  static const auto table = [] {
-    std::vector<std::vector<double>> inv(kMaxLatticeDegree + 1);
-    for (int deg = 0; deg <= kMaxLatticeDegree; ++deg) {
-      const int n = monomial_count3(deg);
-      std::vector<double> v(static_cast<size_t>(n) * n);  // V[p][m] = monomial m at lattice point p
-      for (int p = 0; p < n; ++p) monomial_values3(deg, lattice_point3(deg, p), &v[static_cast<size_t>(p) * n]);
-      inv[deg] = inverse(v, n);
-    }
-    return inv;
-  }();
-  return table[d];
+  static std::vector<double> inv[kMaxLatticeDegree + 1];
+  static std::once_flag made[kMaxLatticeDegree + 1];
+  std::call_once(made[d], [d] {
+    const int n = monomial_count3(d);
+    std::vector<double> v(static_cast<size_t>(n) * n);  // V[p][m] = monomial m at lattice point p
+    for (int p = 0; p < n; ++p) monomial_values3(d, lattice_point3(d, p), &v[static_cast<size_t>(p) * n]);
+    inv[d] = inverse(v, n);
+  });
+  return inv[d];
 }
 
 }  // namespace dlmfsi
