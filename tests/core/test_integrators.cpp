@@ -70,8 +70,7 @@ TEST(LocalBlock, ABlockWithNoPieceScattersNothing) {
   LocalBlock block(3, {0, 1, 2}, 3, {0, 1, 2});
   block.start(Rows{}, 0);
   std::vector<Triplet> out;
-  std::vector<Triplet>* lists[1] = {&out};
-  block.scatter(lists, RowRanges{1, 1});
+  block.scatter(out);
   EXPECT_TRUE(out.empty());
   CsrBuilder builder;
   builder.build(20, 4, {std::vector<Triplet>{{10, 1, 1.0}}});

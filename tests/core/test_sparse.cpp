@@ -168,42 +168,6 @@ TEST(Sparse, RowRangesOfInvertsFirst) {
     }
 }
 
-// Triplets split by row range as an assembly scatters them (each thread's list cut into one list per
-// range) give build's matrix of the unsplit lists bit for bit, on a new pattern, in place on a kept one
-// and rebuilt on a changed one, for any number of ranges.
-TEST(Sparse, BuildByRangeIsBuildOfTheUnsplitTriplets) {
-  const int rows = 150, cols = 400;
-  std::mt19937_64 rng(23);
-  std::uniform_real_distribution<double> mantissa(-1, 1);
-  std::vector<std::vector<Triplet>> threads(3);  // the unsplit lists of three assembling threads
-  for (int e = 0; e < 12000; ++e)
-    threads[rng() % 3].push_back({static_cast<int>(rng() % rows), static_cast<int>(rng() % 30),
-                                  std::ldexp(mantissa(rng), static_cast<int>(rng() % 40) - 20)});
-  auto split = [&](const std::vector<std::vector<Triplet>>& lists, const RowRanges& ranges) {
-    std::vector<std::vector<Triplet>> out(lists.size() * ranges.n);  // range r, thread t: r * threads + t
-    for (size_t t = 0; t < lists.size(); ++t)
-      for (const Triplet& x : lists[t]) out[ranges.of(x.row) * lists.size() + t].push_back(x);
-    return out;
-  };
-  for (int n : {1, 2, 5, 150}) {
-    SCOPED_TRACE(n);
-    const RowRanges ranges{rows, n};
-    auto lists = threads;
-    CsrBuilder builder;
-    auto parts = split(lists, ranges);
-    same_bits(builder.build_by_range(ranges, cols, parts.data(), 3), compress(rows, cols, lists));
-    EXPECT_FALSE(builder.kept_pattern());
-    revalue(lists, 0.3);
-    parts = split(lists, ranges);
-    same_bits(builder.build_by_range(ranges, cols, parts.data(), 3), compress(rows, cols, lists));
-    EXPECT_TRUE(builder.kept_pattern());
-    lists[2].push_back({rows - 1, cols - 1, 0.5});  // a new entry
-    parts = split(lists, ranges);
-    same_bits(builder.build_by_range(ranges, cols, parts.data(), 3), compress(rows, cols, lists));
-    EXPECT_FALSE(builder.kept_pattern());
-  }
-}
-
 // Entries summed one by one on the last build's pattern, the others set aside as misses
 // (sum_on_last_pattern, then build_on_last_pattern): compress's matrix of the same triplets bit for bit,
 // whether the pattern is the same (kept), loses entries, gains some, or both; values of many magnitudes, so

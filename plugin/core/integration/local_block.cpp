@@ -30,21 +30,15 @@ void LocalBlock::enter_fluid_element(const int* dofs) {
 }
 
 void LocalBlock::scatter(std::vector<Triplet>& out) {
-  std::vector<Triplet>* const one[1] = {&out};
-  scatter(one, RowRanges{1, 1});
-}
-
-void LocalBlock::scatter(std::vector<Triplet>* const* out, const RowRanges& ranges) {
   const size_t columns = column_dofs_.size();
   if (columns == 0) return;  // no piece (the element lies outside the fluid mesh): entries_ may be empty
   for (int i : used_rows_) {
     const int row = row_dofs_[i];
-    std::vector<Triplet>& to = ranges.n == 1 ? *out[0] : *out[ranges.of(row)];
     double* entry = &entries_[i];
     for (size_t c = 0; c < columns; ++c, entry += rows_) {
       if (*entry == 0.0) continue;
       // in place: a pushed temporary would be copied by a 16-byte load waiting for its two 8-byte stores
-      to.emplace_back(row, column_dofs_[c], *entry);
+      out.emplace_back(row, column_dofs_[c], *entry);
       *entry = 0.0;
     }
   }

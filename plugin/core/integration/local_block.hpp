@@ -43,8 +43,6 @@ class LocalBlock {
   // column order, and sets them back to zero. Entries never touched stay exactly zero (a multiplier
   // component paired with another fluid component) and are left out.
   void scatter(std::vector<Triplet>& out);
-  // The same, each row's triplets appended to out[ranges.of(row)] (CsrBuilder::build_by_range).
-  void scatter(std::vector<Triplet>* const* out, const RowRanges& ranges);
 
   // The same entries added to the summation on the last call's pattern where they are on it
   // (CsrBuilder::sum_on_last_pattern), the others appended to misses; the entries of the rows summed later

@@ -14,12 +14,6 @@ const CsrMatrix& CsrBuilder::build(int rows, int cols, const std::vector<std::ve
   return build_ranges<false>(rows, cols, n, parts.size(), [&](int) { return parts.data(); });
 }
 
-const CsrMatrix& CsrBuilder::build_by_range(const RowRanges& ranges, int cols, const std::vector<Triplet>* parts,
-                                            int per_range) {
-  return build_ranges<true>(ranges.rows, cols, ranges.n, static_cast<std::size_t>(per_range),
-                            [&](int t) { return parts + static_cast<std::size_t>(t) * per_range; });
-}
-
 template <bool AllInRange, class PartsOf>
 const CsrMatrix& CsrBuilder::build_ranges(int rows, int cols, int n, std::size_t count, PartsOf from_range) {
   const RowRanges split{rows, n};

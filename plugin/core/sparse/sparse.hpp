@@ -24,13 +24,6 @@ class CsrBuilder {
   CsrBuilder(const CsrBuilder&) = delete;
   CsrBuilder& operator=(const CsrBuilder&) = delete;
   const CsrMatrix& build(int rows, int cols, const std::vector<std::vector<Triplet>>& parts, int threads = 1);
-  // The same from triplets already split by row range (an assembly that scatters into ranges.n lists per
-  // thread): range t's triplets are exactly parts[t * per_range] .. parts[t * per_range + per_range - 1],
-  // in order, and each range, on its own thread, reads only those. The matrix is build's for the parts in
-  // the order "per_range lists of range 0, of range 1, ..." with ranges.n threads: the same bit for bit as
-  // for the unsplit lists, since a row's triplets keep their order.
-  const CsrMatrix& build_by_range(const RowRanges& ranges, int cols, const std::vector<Triplet>* parts,
-                                  int per_range);
   // The next build entry by entry (one thread), summed straight into the last build's values where the
   // entry is on its pattern (InPlaceSum::add); an entry that is not goes to a list of triplets instead, the
   // misses. Every contribution to an entry takes the same way, in order, so that each sum is compress's.
