@@ -97,19 +97,23 @@ void PolynomialBasis3::evaluate(int k, Point3 xi, double* out) const {
 }
 
 void PolynomialBasis3::evaluate_affine(int k, Point3 xi, double* value, double* gradient) const {
+  values_affine(k, xi, value);
   const double* c = coefficients(k);
   const double* j = inverse_jacobian(k);
   for (size_t f = 0; f < functions_.size(); ++f, c += nm_) {
     double* g = gradient + 3 * f;
     if (nm_ == 1) {
-      value[f] = c[0];
       g[0] = g[1] = g[2] = 0;
       continue;
     }
-    // monomials 1, xi1, xi2, xi3
-    value[f] = c[0] + c[1] * xi.x + c[2] * xi.y + c[3] * xi.z;
     for (int a = 0; a < 3; ++a) g[a] = c[1] * j[a] + c[2] * j[3 + a] + c[3] * j[6 + a];
   }
+}
+
+void PolynomialBasis3::values_affine(int k, Point3 xi, double* value) const {
+  const double* c = coefficients(k);
+  for (size_t f = 0; f < functions_.size(); ++f, c += nm_)
+    value[f] = nm_ == 1 ? c[0] : c[0] + c[1] * xi.x + c[2] * xi.y + c[3] * xi.z;  // monomials 1, xi1, xi2, xi3
 }
 
 }  // namespace dlmfsi

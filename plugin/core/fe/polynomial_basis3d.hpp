@@ -53,6 +53,8 @@ class PolynomialBasis3 {
 
   // Degree 0 or 1 only: the fitted functions' values at xi and their (constant) physical gradients.
   void evaluate_affine(int k, Point3 xi, double* value, double* gradient) const;
+  // Degree 0 or 1 only: the values alone (evaluate_affine's, bit for bit).
+  void values_affine(int k, Point3 xi, double* value) const;
 
   // The reference coordinates of x in element k (the inverse of the element's affine map).
   Point3 to_reference(int k, Point3 x) const { return frames_.to_reference(k, x); }

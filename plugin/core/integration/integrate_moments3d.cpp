@@ -141,16 +141,8 @@ double MomentIntegrator3::integrate(const ClippedImage3& image, int kf, const Pi
   const Point3 xi = mt.affine_reference(mo.centroid, image.origin);
   const SolidTerms& st = solid_terms(mt, xi);
   const double* sg = st.gradient_s;
-  // the multiplier's values at the centroid, as PolynomialBasis3::evaluate_affine forms them (monomials 1, xi1,
-  // xi2, xi3, or a constant), without its gradients (kept per tetrahedron)
-  {
-    const int terms = integrand_.multiplier.degree() == 0 ? 1 : 4;  // monomial_count3(degree)
-    const double* c = integrand_.multiplier.coefficients(mt.k);
-    if (terms == 1)
-      for (int f = 0; f < multiplier_functions_; ++f) sv[f] = c[f];
-    else
-      for (int f = 0; f < multiplier_functions_; ++f, c += terms) sv[f] = c[0] + c[1] * xi.x + c[2] * xi.y + c[3] * xi.z;
-  }
+  // the multiplier's values at the centroid (its gradients are kept per tetrahedron)
+  integrand_.multiplier.values_affine(mt.k, xi, sv);
   const double(&j)[3][3] = mt.affine_value.jac;
   const double det = mt.affine_det, stiff = integrand_.c1 * mo.volume / det;
   const double mass = st.mass;
