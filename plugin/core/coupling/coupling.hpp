@@ -55,9 +55,9 @@ CsrMatrix assemble_coupling(const Mesh& fluid, const Basis& fluid_space, const M
 // into the last call's matrix where their entries lie on its pattern, and only the others become triplets
 // (CsrBuilder::sum_on_last_pattern); a first call, with no last matrix, sums them into their rows as they
 // come (CsrBuilder::sum_by_rows: no triplets to hold and sort); with threads, the rows that the elements of
-// several threads meet are summed after them, in order. The rows are summed in the solid side's row order (SolidSide::rows: the rows
-// met in turn lie together in memory) and handed out in the multiplier's dof order. The result is
-// assemble_coupling's, bit for bit.
+// several threads meet are summed after them, in order. The rows are summed in the solid side's row order
+// (SolidSide::rows: the rows met in turn lie together in memory) and handed out in the multiplier's dof
+// order. The result is assemble_coupling's, bit for bit.
 class CouplingAssembly {
  public:
   CouplingAssembly();

@@ -126,8 +126,8 @@ class RowSum {
   std::vector<int> head_;  // per row: kNone, kSpilled, or its first chunk as index << writer_bits_ | writer
   std::vector<Writer> writers_;
   std::vector<std::vector<Triplet>> spills_;  // per writer, the entries of its spilled rows
-  std::vector<std::size_t> spill_start_;
-  std::vector<char> later_;  // build: per row, its first compressed spilled entry
+  std::vector<std::size_t> spill_start_;  // build: per row, its first compressed spilled entry
+  std::vector<char> later_;               // per row: summed after the writers (later_rows)
 };
 
 }  // namespace dlmfsi
