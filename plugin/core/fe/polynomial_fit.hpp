@@ -160,6 +160,31 @@ inline bool partition_of_unity(const double* c, int n, int nm) {
 // v0, sum_f (v_f - v0) f + v0 (the non-constant coefficients without the v0 sum_f c_f = 0 they would carry):
 // a map of an element of size h at distance R from 0 then has non-constant coefficients to relative
 // precision eps instead of eps R / h (v_f - v0 is exact for values within a factor 2 of each other).
+// One element's sum for field_monomials (NM > 0: the monomial count fixed at compile time, else nm).
+template <int NM>
+inline void field_element(const double* values, const int* dofs, const std::vector<int>& local_dof, const double* c,
+                          bool unity, int nm, double* o) {
+  const int n = NM > 0 ? NM : nm;
+  const double value = values[dofs[local_dof[0]]];
+  if (unity) {
+    for (int m = 0; m < n; ++m) o[m] = 0.0;
+    for (std::size_t i = 1; i < local_dof.size(); ++i) {
+      const double v = values[dofs[local_dof[i]]] - value;
+      const double* ci = c + i * n;
+      for (int m = 0; m < n; ++m) o[m] += v * ci[m];
+    }
+    o[0] += value;
+    return;
+  }
+  // the first term added to zero (+ 0.0: a -0 term gives +0, as a sum from zero does)
+  for (int m = 0; m < n; ++m) o[m] = value * c[m] + 0.0;
+  for (std::size_t i = 1; i < local_dof.size(); ++i) {
+    c += n;
+    const double v = values[dofs[local_dof[i]]];
+    for (int m = 0; m < n; ++m) o[m] += v * c[m];
+  }
+}
+
 template <int D, class Fit>
 void field_monomials(const BasisOf<D>& space, const double* values, const Fit& fit, int nm, int first, int last,
                      double* out, std::size_t offset, std::size_t stride) {
@@ -167,6 +192,8 @@ void field_monomials(const BasisOf<D>& space, const double* values, const Fit& f
   const int* const table = space.dof_table();
   std::vector<int> asked(nd), local_dof;  // asked: the dofs from dofs() when there is no table
   for (int f : fit.functions()) local_dof.push_back(f / space.components());
+  const double* unity_checked = nullptr;
+  bool unity = false;
   for (int k = first; k < last; ++k) {
     double* o = out + static_cast<std::size_t>(k) * stride + offset;
     if (local_dof.empty()) {
@@ -179,24 +206,14 @@ void field_monomials(const BasisOf<D>& space, const double* values, const Fit& f
     else
       space.dofs(k, asked.data());
     const double* c = fit.coefficients(k);
-    const double value = values[dofs[local_dof[0]]];
-    if (partition_of_unity(c, static_cast<int>(local_dof.size()), nm)) {
-      std::fill(o, o + nm, 0.0);
-      for (std::size_t i = 1; i < local_dof.size(); ++i) {
-        const double v = values[dofs[local_dof[i]]] - value;
-        const double* ci = c + i * nm;
-        for (int m = 0; m < nm; ++m) o[m] += v * ci[m];
-      }
-      o[0] += value;
-      continue;
+    if (c != unity_checked) {  // elements that share a fit (the same pointer) share the answer
+      unity_checked = c;
+      unity = partition_of_unity(c, static_cast<int>(local_dof.size()), nm);
     }
-    // the first term added to zero (+ 0.0: a -0 term gives +0, as a sum from zero does)
-    for (int m = 0; m < nm; ++m) o[m] = value * c[m] + 0.0;
-    for (std::size_t i = 1; i < local_dof.size(); ++i) {
-      c += nm;
-      const double v = values[dofs[local_dof[i]]];
-      for (int m = 0; m < nm; ++m) o[m] += v * c[m];
-    }
+    if (nm == D + 1)  // affine maps (P1, P13d): the loops unrolled
+      field_element<D + 1>(values, dofs, local_dof, c, unity, nm, o);
+    else
+      field_element<0>(values, dofs, local_dof, c, unity, nm, o);
   }
 }
 
