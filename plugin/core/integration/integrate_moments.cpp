@@ -39,6 +39,21 @@ struct MomentIntegrator::Moments {
   }
 };
 
+namespace {
+
+// PolynomialBasis::evaluate_affine for three functions of three monomials (1, xi1, xi2) each.
+inline void affine3(const PolynomialBasis& basis, int k, Point xi, double* value, double* dx, double* dy) {
+  const double* c = basis.coefficients(k);
+  const double* j = basis.inverse_jacobian(k);
+  for (int f = 0; f < 3; ++f, c += 3) {
+    value[f] = c[0] + c[1] * xi.x + c[2] * xi.y;
+    dx[f] = c[1] * j[0] + c[2] * j[2];
+    dy[f] = c[1] * j[1] + c[2] * j[3];
+  }
+}
+
+}  // namespace
+
 bool MomentIntegrator::applies(const Integrand& integrand) {
   const PolynomialBasis &fluid = integrand.fluid, &multiplier = integrand.multiplier;
   return fluid.fitted() && multiplier.fitted() && fluid.degree() <= 1 && multiplier.degree() <= 1 &&
@@ -59,7 +74,8 @@ MomentIntegrator::MomentIntegrator(const Integrand& integrand, CouplingReport& c
   };
   one_pair_ = pairs.size() == 1 && in_order(pairs[0].fluid_functions, fluid_functions_) &&
               in_order(pairs[0].solid_functions, multiplier_functions_);
-  if (fluid_functions_ == 3 && multiplier_functions_ == 3)
+  if (fluid_functions_ == 3 && multiplier_functions_ == 3 && integrand.fluid.terms() == 3 &&
+      integrand.multiplier.terms() == 3)
     add_ = &MomentIntegrator::add<3, 3>;
   else
     add_ = &MomentIntegrator::add<0, 0>;
@@ -81,8 +97,13 @@ void MomentIntegrator::add(const ClippedImage& image, int kf, const Moments& mo,
   const Point eta = fluid.to_reference(kf, mo.centroid, image.origin), xi = image.pull_back(mo.centroid);
   double fv[kMaxFunctions], fgx[kMaxFunctions], fgy[kMaxFunctions];
   double sv[kMaxFunctions], sgx[kMaxFunctions], sgy[kMaxFunctions];
-  fluid.evaluate_affine(kf, eta, fv, fgx, fgy);
-  multiplier.evaluate_affine(mt.k, xi, sv, sgx, sgy);
+  if (FW == 3 && SW == 3) {  // three functions of 1, xi1, xi2 each (P1): evaluate_affine's sums, unrolled
+    affine3(fluid, kf, eta, fv, fgx, fgy);
+    affine3(multiplier, mt.k, xi, sv, sgx, sgy);
+  } else {
+    fluid.evaluate_affine(kf, eta, fv, fgx, fgy);
+    multiplier.evaluate_affine(mt.k, xi, sv, sgx, sgy);
+  }
   const double(&j)[2][2] = mt.affine_value.jac;  // dX_a/ds_b
   const double area = mo.area, det = mt.affine_det, mass = integrand_.c2 / det, stiff = integrand_.c1 * area / det;
   // per fluid function: c2/det (A phi(c), M grad phi), and the chain-rule gradient times c1 A / det
