@@ -10,25 +10,41 @@
 
 namespace dlmfsi {
 
-void TetrahedronMap::polynomial(Point3 xi, Point3& x, Point3 d[3], int first) const {
-  const int nm = monomial_count3(degree_);
-  double v[monomial_count3(kMaxDegree)];
-  monomial_values3(degree_, xi, v);
+namespace {
+
+// TetrahedronMap::polynomial's sums for NM monomials (NM > 0 fixed at compile time: the loops unrolled, the
+// same sums in the same order), else for nm.
+template <int NM>
+void sum_polynomial(const double (*c)[monomial_count3(TetrahedronMap::kMaxDegree)], int degree, int nm,
+                    Point3 xi, Point3& x, Point3 d[3], int first) {
+  const int n = NM > 0 ? NM : nm;
+  double v[monomial_count3(TetrahedronMap::kMaxDegree)];
+  monomial_values3(degree, xi, v);
   double s[3] = {0, 0, 0}, g[3][3] = {};
-  const auto& derivative = monomial_derivatives3(degree_);
-  for (int m = 0; m < nm; ++m) {
+  const MonomialDerivative3* derivative = monomial_derivatives3(degree).data();
+  for (int m = 0; m < n; ++m) {
     if (m >= first)
-      for (int a = 0; a < 3; ++a) s[a] += c_[a][m] * v[m];
+      for (int a = 0; a < 3; ++a) s[a] += c[a][m] * v[m];
     for (int i = 0; i < 3; ++i) {
       // d/dxi_i of monomial m: factor times monomial j of degree - 1, the first ones of v
       const int j = derivative[m].index[i];
       if (j < 0) continue;
       const double dm = derivative[m].factor[i] * v[j];
-      for (int a = 0; a < 3; ++a) g[i][a] += c_[a][m] * dm;
+      for (int a = 0; a < 3; ++a) g[i][a] += c[a][m] * dm;
     }
   }
   x = {s[0], s[1], s[2]};
   for (int i = 0; i < 3; ++i) d[i] = {g[i][0], g[i][1], g[i][2]};
+}
+
+}  // namespace
+
+void TetrahedronMap::polynomial(Point3 xi, Point3& x, Point3 d[3], int first) const {
+  const int nm = monomial_count3(degree_);
+  if (nm == 10)  // P23d maps, whose Newton pull-backs call this at every point of a curved piece
+    sum_polynomial<10>(c_, degree_, nm, xi, x, d, first);
+  else
+    sum_polynomial<0>(c_, degree_, nm, xi, x, d, first);
 }
 
 void TetrahedronMap::set_jacobian(const Point3 d[3], MapValue3& v) const {
