@@ -22,16 +22,16 @@ namespace dlmfsi {
 namespace {
 
 // One thread's share of one call: each solid tetrahedron's block, integrated by the chosen
-// TetrahedronIntegrator and scattered to the thread's triplets.
+// TetrahedronIntegrator and summed into its rows (a first call: row_sum, as writer t) or, with in_place (one
+// thread), into the last call's matrix, the entries off its pattern appended to misses; either way the
+// entries of the rows summed after the threads (RowSum::later, InPlaceSum::later: none with one thread) are
+// appended to later.
 class Assembler3 {
  public:
-  // in_place (one thread): the blocks summed into the last call's matrix, the entries off its pattern
-  // appended to misses (later: the later rows' entries, none with one thread); else to triplets.
   Assembler3(const Integrand3& integrand, const FluidSide3& fluid, const SolidSide3& solid, const SolidMap3& map,
-             const CouplingOptions& opt, const CouplingReport& degrees, FluidSearch3& search,
-             std::vector<Triplet>& triplets, InPlaceSum* in_place, std::vector<Triplet>* misses,
-             std::vector<Triplet>* later)
-      : solid_(solid), map_(map), theirs_(triplets), in_place_(in_place), misses_(misses), later_(later),
+             const CouplingOptions& opt, const CouplingReport& degrees, FluidSearch3& search, int t, RowSum* row_sum,
+             InPlaceSum* in_place, std::vector<Triplet>* misses, std::vector<Triplet>* later)
+      : solid_(solid), map_(map), t_(t), row_sum_(row_sum), in_place_(in_place), misses_(misses), later_(later),
         block_(solid.space().local_dofs(), integrand.pairs.used_multiplier_dofs(), fluid.space().local_dofs(),
                integrand.pairs.used_fluid_dofs()) {
     report.fluid_degree = degrees.fluid_degree;
@@ -44,14 +44,14 @@ class Assembler3 {
 
   void run(const int* first, const int* last) {
     HeldLists<Triplet> held(in_place_ ? std::vector<std::vector<Triplet>*>{misses_, later_}
-                                      : std::vector<std::vector<Triplet>*>{&theirs_});
+                                      : std::vector<std::vector<Triplet>*>{later_});
     for (const int* k = first; k != last; ++k) solid_tetrahedron(*k, held.lists());
   }
 
   CouplingReport report;  // this thread's counts (the integrators count in it too)
 
  private:
-  // lists: this thread's triplets, or (in place) its misses and later entries
+  // lists: (in place) this thread's misses and later entries, or its later entries
   void solid_tetrahedron(int ks, std::vector<Triplet>* const* lists) {
     MappedTet mt;
     mt.prepare(solid_.mesh(), map_, ks);
@@ -68,12 +68,13 @@ class Assembler3 {
     if (in_place_)
       block_.scatter(*in_place_, *lists[0], *lists[1]);
     else
-      block_.scatter(*lists[0]);
+      block_.scatter(*row_sum_, t_, *lists[0]);
   }
 
   const SolidSide3& solid_;
   const SolidMap3& map_;
-  std::vector<Triplet>& theirs_;  // the caller's list, held while the thread runs
+  const int t_;
+  RowSum* const row_sum_;
   InPlaceSum* const in_place_;
   std::vector<Triplet>* const misses_;
   std::vector<Triplet>* const later_;
@@ -113,12 +114,35 @@ void check_options(const Basis3& fluid_space, const Basis3& multiplier, const Co
                 "] needs 0 <= rank < size");
 }
 
-std::vector<int> share_in_order(const SolidSide3& solid, int first, int last) {
+// The solid tetrahedra of share [first, last) of the indices, in the solid side's order (the order itself
+// for the whole; otherwise written into out).
+const std::vector<int>& share_in_order(const SolidSide3& solid, int first, int last, std::vector<int>& out) {
   if (first == 0 && last == solid.mesh().size()) return solid.order();
-  std::vector<int> out;
+  out.clear();
   for (int k : solid.order())
     if (k >= first && k < last) out.push_back(k);
   return out;
+}
+
+// The rows (multiplier dofs) that the solid tetrahedra of more than one thread's share meet (run_shares'
+// split of elements), marked in later (one per row); owner, dofs: scratch.
+void mark_later_rows(const SolidSide3& solid, const std::vector<int>& elements, int threads, std::vector<char>& later,
+                     std::vector<int>& owner) {
+  const Basis3& space = solid.space();
+  const int rows = space.dof_count(), nd = space.local_dofs();
+  later.assign(rows, 0);
+  owner.assign(rows, -1);
+  std::vector<int> dofs(nd);
+  const long long count = static_cast<long long>(elements.size());
+  for (int t = 0; t < threads; ++t)
+    for (long long e = share_first(count, t, threads); e < share_first(count, t + 1, threads); ++e) {
+      space.dofs(elements[e], dofs.data());
+      for (int d : dofs) {
+        int& o = owner[d];
+        if (o < 0) o = t;
+        else if (o != t) later[d] = 1;
+      }
+    }
 }
 
 }  // namespace
@@ -163,31 +187,37 @@ const CsrMatrix& CouplingAssembly3::assemble(const FluidSide3& fluid, const Soli
   const bool parallel = fluid.basis().fitted() && solid.basis().fitted() && map.degree() >= 1;
   const int threads = parallel ? std::max(1, std::min(opt.threads, 64)) : 1;
   while (static_cast<int>(threads_.size()) < threads) threads_.push_back(std::make_unique<Thread>());
-  if (static_cast<int>(triplets_.size()) < threads) triplets_.resize(threads);
   auto since = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   // One thread sums straight into the last call's matrix (a time loop's pattern changes little), the entries
-  // off its pattern as triplets: the same sums, bit for bit, as compressing the triplets.
+  // off its pattern as triplets; without a last matrix, or with threads, the blocks are summed into their rows
+  // as they come (RowSum), the rows that several threads meet after them, in order: either way compress's
+  // sums of the blocks' entries in element order, bit for bit.
   const int rows = solid.space().dof_count(), cols = fluid.space().dof_count();
+  const std::vector<int>& elements = share_in_order(solid, first, last, share_);
   InPlaceSum* const in_place = threads == 1 ? matrix_.sum_on_last_pattern(rows, cols) : nullptr;
   if (in_place) {
     in_place->later_rows().clear();
     if (misses_.size() < 2) misses_.resize(2);
-    if (later_.empty()) later_.resize(1);
   }
+  RowSum* const row_sum = in_place ? nullptr : matrix_.sum_by_rows(rows, cols, threads);
+  if (row_sum) {
+    if (threads == 1)
+      row_sum->later_rows().clear();
+    else
+      mark_later_rows(solid, elements, threads, row_sum->later_rows(), owner_);
+  }
+  if (later_.size() < static_cast<size_t>(threads)) later_.resize(threads);
   total.setup_seconds = since();
   std::vector<std::unique_ptr<Assembler3>> workers;
   run_shares(workers, threads, [&](int t) {
-    return std::make_unique<Assembler3>(integrand, fluid, solid, map, opt, total, threads_[t]->on(fluid),
-                                        triplets_[t], in_place, in_place ? &misses_[0] : nullptr,
-                                        in_place ? &later_[0] : nullptr);
-  }, share_in_order(solid, first, last));
+    return std::make_unique<Assembler3>(integrand, fluid, solid, map, opt, total, threads_[t]->on(fluid), t, row_sum,
+                                        in_place, in_place ? &misses_[0] : nullptr, &later_[t]);
+  }, elements);
   total.pieces_seconds = since() - total.setup_seconds;
   for (auto& w : workers) total.add_counts(w->report);
   check_outside(opt, total);
-  // build reads the first `threads` lists (in thread order: the sums of compress's order for any count)
-  if (static_cast<int>(triplets_.size()) > threads) triplets_.resize(threads);
   const CsrMatrix& m = in_place ? matrix_.build_on_last_pattern(misses_.data(), later_.data(), 1)
-                                : matrix_.build(rows, cols, triplets_);
+                                : matrix_.build_summed_rows(later_.data(), threads);
   check_finite(m, opt);
   total.seconds = since();
   if (report) *report = total;

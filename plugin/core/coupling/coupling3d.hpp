@@ -31,8 +31,10 @@ CsrMatrix assemble_coupling(const FluidSide3& fluid, const SolidSide3& solid, co
                             const CouplingOptions& options, CouplingReport* report = nullptr);
 
 // The same, keeping its memory from one call to the next (a time loop): each thread's search (with its
-// marks over the fluid side), its triplets and the matrix's arrays are reused, grown and never shrunk; with
-// one thread the blocks are summed into the last call's matrix where they fall on its pattern.
+// marks over the fluid side) and the matrix's arrays are reused, grown and never shrunk. A first call (or
+// one with threads) sums the blocks into their rows as they come (CsrBuilder::sum_by_rows: no triplets to
+// hold and sort); with one thread a next call sums them into the last call's matrix where they fall on its
+// pattern (CsrBuilder::sum_on_last_pattern).
 class CouplingAssembly3 {
  public:
   CouplingAssembly3();
@@ -47,9 +49,11 @@ class CouplingAssembly3 {
  private:
   struct Thread;
   std::vector<std::unique_ptr<Thread>> threads_;
-  std::vector<std::vector<Triplet>> triplets_;  // per thread
-  // One thread summing in place: its misses (and those of the later rows), its later rows' entries (none).
+  // One thread summing in place: its misses (and those of the later rows). Per thread: the entries of the
+  // rows summed after the threads (RowSum::later_rows; none with one thread).
   std::vector<std::vector<Triplet>> misses_, later_;
+  std::vector<int> share_;  // the solid tetrahedra of part `part`, in order
+  std::vector<int> owner_;  // per row, the thread that met it first (mark_later_rows' scratch)
   CsrBuilder matrix_;
 };
 
