@@ -244,3 +244,49 @@ TEST(PolynomialFit, ElementsThatDifferFromTheFirstGetTheirOwnFits) {
     }
   }
 }
+
+namespace {
+
+// P1 on tetrahedra whose functions on element k are permuted (k % 3 == 1: the last two swapped) or negated
+// (k % 3 == 2) against the barycentric coordinates: only elements 0, 3, 6, ... share element 0's polynomials.
+class TwistedP1Tet : public Basis3 {
+ public:
+  explicit TwistedP1Tet(const Mesh3& m) : p1_(m) {}
+  int components() const override { return 1; }
+  int dof_count() const override { return p1_.dof_count(); }
+  int local_dofs() const override { return 4; }
+  void component_dofs(int, int& f, int& l) const override { f = 0; l = 4; }
+  void dofs(int k, int* g) const override { p1_.dofs(k, g); }
+  void evaluate(int k, Point3 xi, double* out) const override {
+    p1_.evaluate(k, xi, out);
+    if (k % 3 == 1)
+      for (int d = 0; d < 4; ++d) std::swap(out[8 + d], out[12 + d]);
+    if (k % 3 == 2)
+      for (int i = 0; i < 16; ++i) out[i] = -out[i];
+  }
+
+ private:
+  test3d::P1Tet p1_;
+};
+
+}  // namespace
+
+// The 3D fit's check (PolynomialBasis3: an element whose values at the check point are element 0's bit for
+// bit shares its fit without the fit's sums): elements whose functions differ from element 0's get fits of
+// their own, the others share it, and the fitted basis gives the basis's values and gradients on every one.
+TEST(PolynomialFit, TetrahedraThatDifferFromTheFirstGetTheirOwnFits) {
+  Mesh3 mesh = test3d::box_mesh(2, 2, 1, {0.3, -0.2, 0.1}, {1.7, 0.6, 2.3});
+  mesh = test3d::moved(mesh, {1, 2, 3}, 0.4, {0, 0, 0}, {0, 0, 0});
+  const TwistedP1Tet basis(mesh);
+  const PolynomialBasis3 fit(basis, mesh, 1, {0});
+  ASSERT_TRUE(fit.fitted());
+  double got[16], want[16];
+  for (int k = 0; k < mesh.size(); ++k) {
+    EXPECT_EQ(fit.shared(k), k % 3 == 0) << "element " << k;
+    for (const Point3 xi : {Point3{0.1, 0.2, 0.3}, Point3{0.5, 0.1, 0.2}}) {
+      fit.evaluate(k, xi, got);
+      basis.evaluate(k, xi, want);
+      for (int i = 0; i < 16; ++i) EXPECT_NEAR(got[i], want[i], 1e-11 * (1 + std::fabs(want[i]))) << k << " " << i;
+    }
+  }
+}

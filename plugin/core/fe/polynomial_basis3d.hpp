@@ -77,7 +77,10 @@ class PolynomialBasis3 {
 
  private:
   void fit(int k, double* coefficients);
-  void check(int k);
+  void check(int k, const double* v);  // v: the monomials at the check point
+  // Are the listed functions' values in sample (Basis3::values' layout) element 0's at the check point, bit
+  // for bit (and does element 0 pass the check)?
+  bool same_as_first(const double* sample) const;
   const Basis3& basis_;
   AffineElementMaps3 frames_;
   int degree_, nm_ = 0, nc_;
@@ -88,6 +91,7 @@ class PolynomialBasis3 {
   std::vector<int> slot_;          // per element: -1 shared fit, else offset in own_
   std::vector<double> own_;        // element fits that differ from the shared one
   std::vector<double> sample_, check_;
+  std::vector<double> first_values_;  // per function, element 0's value at the check point (empty: not used)
 };
 
 }  // namespace dlmfsi
