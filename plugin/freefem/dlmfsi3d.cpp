@@ -10,7 +10,9 @@
 #include "ff++.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
@@ -29,14 +31,66 @@ namespace {
 
 using dlmfsi::Point3;
 
+// The element a script calls name (FreeFEM's table of global names), or null.
+const TypeOfFE3* named_element3(const char* name) {
+  const C_F0 c = Global.Find(name);
+  if (c.left() != atype<TypeOfFE3*>() || !c.LeftValue()) return nullptr;
+  return GetAny<TypeOfFE3*>((*c.LeftValue())(NullStack));
+}
+
+// Is t one of P03d, P13d, P1b3d, P23d? Their basis functions' values at a reference point are polynomials
+// of its barycentric coordinates alone (P1b3d: l_i - b/4 and b, b = 256 l0 l1 l2 l3; P23d: l_i (2 l_i - 1)
+// and 4 l_i l_j on the reference edges), so the same on every tetrahedron. No other element is taken to be so
+// (RT03d's and Edge03d's values depend on the tetrahedron's faces and edges).
+bool barycentric_values3(const TypeOfFE3* t) {
+  static const TypeOfFE3* const known[4] = {named_element3("P03d"), named_element3("P13d"), named_element3("P1b3d"),
+                                            named_element3("P23d")};
+  return t && std::find(known, known + 4, t) != known + 4;
+}
+
+// Is t the sum of parts in this order (FreeFEM's composite element: each part's dofs after the previous
+// part's, dof d of part j as dof d of it, its components after the previous part's)?
+bool sum_of3(const TypeOfFE3& t, const std::vector<const TypeOfFE3*>& parts) {
+  int dof = 0, components = 0;
+  for (size_t j = 0; j < parts.size(); ++j) {
+    if (!parts[j] || dof + parts[j]->NbDoF > t.NbDoF) return false;
+    for (int d = 0; d < parts[j]->NbDoF; ++d)
+      if (t.fromFE[dof + d] != static_cast<int>(j) || t.fromDF[dof + d] != d) return false;
+    dof += parts[j]->NbDoF;
+    components += parts[j]->N;
+  }
+  return dof == t.NbDoF && components == t.N;
+}
+
+// The elements a script's space declared as a composite (fespace Rh(Th, [P13d, P13d, P1b3d])) is the sum
+// of, in order, when vh is that space's current FESpace3 (its element the composite's sum); else empty.
+std::vector<const TypeOfFE3*> space_parts3(const v_fes3* declared, const FESpace3& vh) {
+  const pfes3_tefk* composite = dynamic_cast<const pfes3_tefk*>(declared);
+  if (!composite || static_cast<const FESpace3*>(composite->pVh) != &vh || vh.TFE[0] != &composite->tefs) return {};
+  return std::vector<const TypeOfFE3*>(composite->tef, composite->tef + composite->k);
+}
+
 // A FreeFEM 3D finite element space as a dlmfsi::Basis3.
 class SpaceBasis3 : public dlmfsi_ff::SpaceBasisOf<3, FESpace3> {
  public:
-  using SpaceBasisOf::SpaceBasisOf;
+  // parts: the elements vh's element is the sum of, in order (space_parts3), or empty when it is one element.
+  explicit SpaceBasis3(const FESpace3& vh, const std::vector<const TypeOfFE3*>& parts = {})
+      : SpaceBasisOf(vh), same_everywhere_(values_independent_of_element(vh, parts)), serial_(++serials_) {}
   void evaluate(int k, Point3 xi, double* out) const override {
     basis_functions(k, xi, Fop_D0 | Fop_D1, out);
   }
-  void values(int k, Point3 xi, double* out) const override { basis_functions(k, xi, Fop_D0, out); }
+  void values(int k, Point3 xi, double* out) const override {
+    if (same_everywhere_ && k != 0)
+      element0_values(xi, out);
+    else
+      basis_functions(k, xi, Fop_D0, out);
+  }
+  // One FreeFEM element, P03d, P13d, P1b3d or P23d, or a sum of those (a composite such as
+  // [P13d, P13d, P13d, P1b3d], whose values are its parts' values side by side): the basis functions' values
+  // at a reference point are polynomials of its barycentric coordinates alone, the same on every tetrahedron
+  // (the derivatives are not). values() then gives every element element 0's values, kept per thread for the
+  // last point asked, so that the fits' check of every element at one point evaluates element 0 only.
+  bool same_everywhere() const { return same_everywhere_; }
 
  private:
   // The operators asked for (op_id, op_dx, op_dy, op_dz) into out; the others are left as they are.
@@ -55,14 +109,72 @@ class SpaceBasis3 : public dlmfsi_ff::SpaceBasisOf<3, FESpace3> {
         o[3] = fb(df, c, op_dz);
       }
   }
+
+  // values(0, xi, out), from this thread's kept values when they are element 0's at xi (bit for bit).
+  void element0_values(Point3 xi, double* out) const {
+    struct Kept {
+      long serial = 0;  // the space's (serials_ start at 1)
+      double xi[3];
+      std::vector<double> values;  // Basis3::values' layout
+    };
+    thread_local Kept kept;
+    const double at[3] = {xi.x, xi.y, xi.z};
+    const std::size_t n = static_cast<std::size_t>(nd_) * nc_;
+    if (kept.serial != serial_ || std::memcmp(kept.xi, at, sizeof at) != 0) {
+      kept.values.resize(4 * n);
+      basis_functions(0, xi, Fop_D0, kept.values.data());
+      kept.serial = serial_;
+      std::memcpy(kept.xi, at, sizeof at);
+    }
+    for (std::size_t f = 0; f < n; ++f) out[4 * f] = kept.values[4 * f];
+  }
+
+  static bool values_independent_of_element(const FESpace3& vh, const std::vector<const TypeOfFE3*>& parts) {
+    const TypeOfFE3* t = vh.TFE[0];  // a FESpace3 has one element for all its tetrahedra
+    if (parts.empty()) return barycentric_values3(t);
+    if (!t || !sum_of3(*t, parts)) return false;
+    return std::all_of(parts.begin(), parts.end(), barycentric_values3);
+  }
+
+  const bool same_everywhere_;
+  const long serial_;  // no two spaces of the process have the same one
+  static std::atomic<long> serials_;
 };
 
-// The fluid side of the last call.
-using FluidCache3 = dlmfsi_ff::SideCache<FESpace3, SpaceBasis3, dlmfsi::FluidSide3>;
+std::atomic<long> SpaceBasis3::serials_{0};
+
+// The fluid side of the last call; parts: as SpaceBasis3's.
+struct FluidCache3 : dlmfsi_ff::SideCache<FESpace3, SpaceBasis3, dlmfsi::FluidSide3> {
+  const dlmfsi::FluidSide3& get(const FESpace3& vh, const std::vector<int>& comps,
+                                const std::vector<const TypeOfFE3*>& parts) {
+    if (holds(vh, comps)) return *side;
+    side.reset();
+    basis.reset(new SpaceBasis3(vh, parts));
+    side.reset(new dlmfsi::FluidSide3(dlmfsi_ff::convert(vh.Th), *basis, comps));
+    space = &vh;
+    id = vh;
+    components = comps;
+    return *side;
+  }
+};
 
 // The solid side (solid mesh, multiplier fit) and the fits of the map's spaces of the last calls (the three
-// most recently used).
-using SolidCache3 = dlmfsi_ff::SolidCacheOf<FESpace3, SpaceBasis3, dlmfsi::SolidSide3, dlmfsi::PolynomialBasis3, 3>;
+// most recently used); parts: as SpaceBasis3's.
+struct SolidCache3 : dlmfsi_ff::SolidCacheOf<FESpace3, SpaceBasis3, dlmfsi::SolidSide3, dlmfsi::PolynomialBasis3, 3> {
+  const dlmfsi::SolidSide3& get(const FESpace3& vs, const std::vector<int>& comps,
+                                const std::vector<const TypeOfFE3*>& parts) {
+    if (holds(vs, comps)) return *side;
+    fits.clear();
+    side.reset();
+    basis.reset(new SpaceBasis3(vs, parts));
+    basis->tabulate_dofs();  // before the side, which reads every element's dofs too
+    side.reset(new dlmfsi::SolidSide3(dlmfsi_ff::convert(vs.Th), *basis, comps));
+    space = &vs;
+    id = vs;
+    components = comps;
+    return *side;
+  }
+};
 
 FluidCache3& fluid_cache() {
   static FluidCache3* cache = new FluidCache3;  // never destroyed: FreeFEM tears its spaces down first
@@ -171,8 +283,10 @@ std::uint64_t Dlmfsi3Op::map_checksum(Stack stack) const {
 }
 
 const dlmfsi::CsrMatrix& Dlmfsi3Op::assemble(Stack stack, const dlmfsi::CouplingOptions& opt) const {
-  FESpace3* vf = **GetAny<pfes3*>((*fluid_space)(stack));
-  FESpace3* vs = **GetAny<pfes3*>((*solid_space)(stack));
+  v_fes3* const declared_vf = *GetAny<pfes3*>((*fluid_space)(stack));
+  v_fes3* const declared_vs = *GetAny<pfes3*>((*solid_space)(stack));
+  FESpace3* vf = *declared_vf;
+  FESpace3* vs = *declared_vs;
   if (!vf || !vs) throw dlmfsi::Error("a space is not defined");
   pf3r p[3];
   const FESpace3* sp[3];
@@ -183,9 +297,9 @@ const dlmfsi::CsrMatrix& Dlmfsi3Op::assemble(Stack stack, const dlmfsi::Coupling
     sp[a] = (FESpace3*)p[a].first->Vh;
     if (&sp[a]->Th != &vs->Th) throw dlmfsi::Error("the map [X, Y, Z] is not defined on the mesh of the multiplier space Vs");
   }
-  const dlmfsi::FluidSide3& fluid = fluid_cache().get(*vf, opt.fluid_components);
+  const dlmfsi::FluidSide3& fluid = fluid_cache().get(*vf, opt.fluid_components, space_parts3(declared_vf, *vf));
   SolidCache3& cache = solid_cache();
-  const dlmfsi::SolidSide3& solid = cache.get(*vs, opt.solid_components);
+  const dlmfsi::SolidSide3& solid = cache.get(*vs, opt.solid_components, space_parts3(declared_vs, *vs));
   cache.trim_fits();
   const SpaceBasis3 bx(*sp[0]), by(*sp[1]), bz(*sp[2]);
   const dlmfsi::Basis3* spaces[3] = {&bx, &by, &bz};
