@@ -12,6 +12,7 @@
 
 #include "coupling/coupling3d.hpp"
 #include "errors.hpp"
+#include "map/element_map3d.hpp"
 #include "map/field_map3d.hpp"
 #include "map/fold3d.hpp"
 #include "fe/rules.hpp"
@@ -317,5 +318,60 @@ TEST(Fold3d, BernsteinCertificateAgainstDenseSampling) {
     const JacobianSign s = jacobian_sign3(p, 3, 10, 4096, where, &tested);
     EXPECT_EQ(s, m > 0 ? JacobianSign::Positive : JacobianSign::NearlyFolds) << m;
     EXPECT_GT(tested, 8) << m;
+  }
+}
+
+// TetrahedronMap's quadratic evaluation (written out for P23d maps) against a quadratic with all ten monomials
+// in each component, on a tetrahedron away from the origin: X, dX/ds and the displacement X - X(corner 0) at
+// random reference points, against the formula evaluated directly.
+TEST(TetrahedronMap, AFullQuadraticAndItsJacobianMatchTheFormula) {
+  const double q[3][10] = {{0.3, 1.1, -0.2, 0.4, 0.05, -0.07, 0.11, 0.02, -0.09, 0.06},
+                           {-0.1, 0.2, 0.9, -0.3, -0.04, 0.08, 0.03, -0.12, 0.05, 0.07},
+                           {0.2, -0.25, 0.15, 1.2, 0.09, 0.01, -0.06, 0.04, 0.1, -0.08}};
+  // X_a(s) = q0 + q1 x + q2 y + q3 z + q4 x^2 + q5 x y + q6 y^2 + q7 x z + q8 y z + q9 z^2
+  const Formula quadratic = [&q](Point3 s, Point3& x, double j[3][3]) {
+    double v[3];
+    for (int a = 0; a < 3; ++a) {
+      const double* c = q[a];
+      v[a] = c[0] + c[1] * s.x + c[2] * s.y + c[3] * s.z + c[4] * s.x * s.x + c[5] * s.x * s.y + c[6] * s.y * s.y +
+             c[7] * s.x * s.z + c[8] * s.y * s.z + c[9] * s.z * s.z;
+      j[a][0] = c[1] + 2 * c[4] * s.x + c[5] * s.y + c[7] * s.z;
+      j[a][1] = c[2] + c[5] * s.x + 2 * c[6] * s.y + c[8] * s.z;
+      j[a][2] = c[3] + c[7] * s.x + c[8] * s.y + 2 * c[9] * s.z;
+    }
+    x = {v[0], v[1], v[2]};
+  };
+  Mesh3 solid;
+  solid.vertices = {{2.0, 1.0, 3.0}, {2.4, 1.1, 3.0}, {2.1, 1.5, 3.1}, {2.0, 1.2, 3.45}};
+  solid.tetrahedra = {{0, 1, 2, 3}};
+  solid.build_adjacency();
+  const FormulaMap3 map(solid, quadratic, 2);
+  TetrahedronMap tm;
+  tm.fit(solid, map, 0);
+  ASSERT_EQ(tm.fitted_degree(), 2);
+  Point3 corner[4];
+  solid.corners(0, corner);
+  Point3 x0;
+  double j0[3][3];
+  quadratic(corner[0], x0, j0);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int n = 0; n < 50; ++n) {
+    Point3 xi{u(rng), u(rng), u(rng)};
+    if (xi.x + xi.y + xi.z > 1) xi = {xi.x / 3, xi.y / 3, xi.z / 3};
+    Point3 x;
+    double j[3][3];
+    quadratic(from_reference(corner, xi), x, j);
+    const MapValue3 v = tm.at(xi);
+    EXPECT_NEAR(v.x.x, x.x, 1e-13);
+    EXPECT_NEAR(v.x.y, x.y, 1e-13);
+    EXPECT_NEAR(v.x.z, x.z, 1e-13);
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) EXPECT_NEAR(v.jac[a][b], j[a][b], 1e-12) << a << b;
+    Point3 d, dxi[3];
+    tm.displacement(xi, d, dxi);
+    EXPECT_NEAR(d.x, x.x - x0.x, 1e-13);
+    EXPECT_NEAR(d.y, x.y - x0.y, 1e-13);
+    EXPECT_NEAR(d.z, x.z - x0.z, 1e-13);
   }
 }

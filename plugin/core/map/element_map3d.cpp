@@ -12,17 +12,14 @@ namespace dlmfsi {
 
 namespace {
 
-// TetrahedronMap::polynomial's sums for NM monomials (NM > 0 fixed at compile time: the loops unrolled, the
-// same sums in the same order), else for nm.
-template <int NM>
+// TetrahedronMap::polynomial's sums for any degree (nm monomials).
 void sum_polynomial(const double (*c)[monomial_count3(TetrahedronMap::kMaxDegree)], int degree, int nm,
                     Point3 xi, Point3& x, Point3 d[3], int first) {
-  const int n = NM > 0 ? NM : nm;
   double v[monomial_count3(TetrahedronMap::kMaxDegree)];
   monomial_values3(degree, xi, v);
   double s[3] = {0, 0, 0}, g[3][3] = {};
   const MonomialDerivative3* derivative = monomial_derivatives3(degree).data();
-  for (int m = 0; m < n; ++m) {
+  for (int m = 0; m < nm; ++m) {
     if (m >= first)
       for (int a = 0; a < 3; ++a) s[a] += c[a][m] * v[m];
     for (int i = 0; i < 3; ++i) {
@@ -37,14 +34,35 @@ void sum_polynomial(const double (*c)[monomial_count3(TetrahedronMap::kMaxDegree
   for (int i = 0; i < 3; ++i) d[i] = {g[i][0], g[i][1], g[i][2]};
 }
 
+// The same for degree 2 written out: monomials 1, xi1, xi2, xi3, xi1^2, xi1 xi2, xi2^2, xi1 xi3, xi2 xi3, xi3^2
+// (lattice3d.hpp's order), each derivative's terms summed from zero in that order, as the loop above does.
+void sum_quadratic(const double (*c)[monomial_count3(TetrahedronMap::kMaxDegree)], Point3 xi, Point3& x,
+                   Point3 d[3], int first) {
+  const double v[10] = {1, xi.x, xi.y, xi.z, xi.x * xi.x, xi.x * xi.y, xi.y * xi.y, xi.x * xi.z, xi.y * xi.z,
+                        xi.z * xi.z};
+  const double x2 = 2 * xi.x, y2 = 2 * xi.y, z2 = 2 * xi.z;
+  double s[3], g[3][3];
+  for (int a = 0; a < 3; ++a) {
+    const double* ca = c[a];
+    double sum = 0;
+    for (int m = first; m < 10; ++m) sum += ca[m] * v[m];
+    s[a] = sum;
+    g[0][a] = ca[1] + ca[4] * x2 + ca[5] * xi.y + ca[7] * xi.z;  // d/dxi1: xi1, xi1^2, xi1 xi2, xi1 xi3
+    g[1][a] = ca[2] + ca[5] * xi.x + ca[6] * y2 + ca[8] * xi.z;  // d/dxi2: xi2, xi1 xi2, xi2^2, xi2 xi3
+    g[2][a] = ca[3] + ca[7] * xi.x + ca[8] * xi.y + ca[9] * z2;  // d/dxi3: xi3, xi1 xi3, xi2 xi3, xi3^2
+  }
+  x = {s[0], s[1], s[2]};
+  for (int i = 0; i < 3; ++i) d[i] = {g[i][0], g[i][1], g[i][2]};
+}
+
 }  // namespace
 
 void TetrahedronMap::polynomial(Point3 xi, Point3& x, Point3 d[3], int first) const {
   const int nm = monomial_count3(degree_);
-  if (nm == 10)  // P23d maps, whose Newton pull-backs call this at every point of a curved piece
-    sum_polynomial<10>(c_, degree_, nm, xi, x, d, first);
+  if (degree_ == 2)  // P23d maps, whose Newton pull-backs call this at every point of a curved piece
+    sum_quadratic(c_, xi, x, d, first);
   else
-    sum_polynomial<0>(c_, degree_, nm, xi, x, d, first);
+    sum_polynomial(c_, degree_, nm, xi, x, d, first);
 }
 
 void TetrahedronMap::set_jacobian(const Point3 d[3], MapValue3& v) const {
