@@ -590,18 +590,19 @@ class SimplePolytope {
   static constexpr int kCapacity = 32;  // at most the bits of live_
   enum Outcome { kKept, kEmpty, kUncertain };
 
-  // a's four vertices with their values against b's planes.
-  void start(const Point3 a[4], const double d[4][4], const double e[4][4]) {
+  // a's vertex i's value against b's plane j and its bound (before start()).
+  void set_value(int i, int j, double d, double e) {
+    v_[i].d[j] = d;
+    v_[i].e[j] = e;
+  }
+  // a's four vertices, their values against b's planes set (set_value).
+  void start(const Point3 a[4]) {
     n_ = 4;
     for (int i = 0; i < 4; ++i) {
       SimpleVertex& v = v_[i];
       v.x = a[i].x;
       v.y = a[i].y;
       v.z = a[i].z;
-      for (int j = 0; j < 4; ++j) {
-        v.d[j] = d[j][i];
-        v.e[j] = e[j][i];
-      }
       for (int s = 0; s < 3; ++s) {
         v.nb[s] = kTetNeighbours[i][s];
         v.back[s] = kTetBack[i][s];
@@ -745,69 +746,66 @@ class SimplePolytope {
 
 namespace {
 
-// Four doubles handled as one value (GCC and Clang vector extensions: two SSE2 registers on x86-64, or
-// one AVX register), and the lane-wise comparisons' masks (-1 true, 0 false).
-typedef double Lanes4 __attribute__((vector_size(32)));
-typedef long long Mask4 __attribute__((vector_size(32)));
-// |v| lane by lane (the sign bits cleared), written out where used: a function taking or returning a
-// 32-byte vector would have an ABI that depends on AVX.
-constexpr long long kNoSign = 0x7FFFFFFFFFFFFFFFLL;
-// Bit i set where lane i of m is true (-1): the sign bits, two lanes at a time where SSE2 has movmskpd.
-inline unsigned lane_bits(const Mask4& m) {
+// Two doubles handled as one value (GCC and Clang vector extensions: one SSE2 register on x86-64, where
+// the lane-wise comparisons are cmppd and their masks' sign bits one movmskpd), and the comparisons' masks
+// (-1 true, 0 false). a's four vertices are two such pairs.
+typedef double Lanes2 __attribute__((vector_size(16)));
+typedef long long Mask2 __attribute__((vector_size(16)));
+constexpr Mask2 kNoSign = {0x7FFFFFFFFFFFFFFFLL, 0x7FFFFFFFFFFFFFFFLL};
+// Bit i set where lane i of m is true (-1).
+inline unsigned lane_bits(Mask2 m) {
 #if defined(__SSE2__)
-  typedef double Lanes2 __attribute__((vector_size(16)));
-  const Lanes4 v = reinterpret_cast<Lanes4>(m);
-  const Lanes2 low = {v[0], v[1]}, high = {v[2], v[3]};
-  return static_cast<unsigned>(__builtin_ia32_movmskpd(low) | __builtin_ia32_movmskpd(high) << 2);
+  return static_cast<unsigned>(__builtin_ia32_movmskpd(reinterpret_cast<Lanes2>(m)));
 #else
-  return static_cast<unsigned>(m[0] & 1) | static_cast<unsigned>(m[1] & 1) << 1 | static_cast<unsigned>(m[2] & 1) << 2 |
-         static_cast<unsigned>(m[3] & 1) << 3;
+  return static_cast<unsigned>(m[0] & 1) | static_cast<unsigned>(m[1] & 1) << 1;
 #endif
 }
+inline Lanes2 magnitude(Lanes2 v) { return reinterpret_cast<Lanes2>(reinterpret_cast<Mask2>(v) & kNoSign); }
+
 // clip_filtered's floating-point path: false when a side is uncertain (then out is unset), else out is the
 // piece (n = 0 when empty) and beyond is set.
-bool filtered_piece(const Point3 a[4], const Point3 b[4], unsigned& beyond, Piece3& out) {
-  TetFaces b_faces;
-  b_faces.set(b);
-  // a's vertices by axis, four lanes: the four values against one plane at once
-  const Lanes4 ax = {a[0].x, a[1].x, a[2].x, a[3].x}, ay = {a[0].y, a[1].y, a[2].y, a[3].y},
-               az = {a[0].z, a[1].z, a[2].z, a[3].z};
-  double d[4][4], e[4][4];
+bool filtered_piece(const Point3 a[4], const Point3 b[4], const TetNormals& b_normals, unsigned& beyond,
+                    Piece3& out) {
+  // a's vertices by axis, two pairs of lanes (vertices 0, 1 and 2, 3): the values against one plane at once
+  const Lanes2 ax[2] = {{a[0].x, a[1].x}, {a[2].x, a[3].x}}, ay[2] = {{a[0].y, a[1].y}, {a[2].y, a[3].y}},
+               az[2] = {{a[0].z, a[1].z}, {a[2].z, a[3].z}};
+  // the values and bounds go straight to the polytope's first four vertices (start() takes them there)
+  SimplePolytope polytope;
   unsigned inner = 0, outer = 0;  // bit 4 j + i: a's vertex i certainly inside, outside b's face j
-  Mask4 bounded = {-1, -1, -1, -1};
+  Mask2 bounded = {-1, -1};
   beyond = 0;
   out.n = 0;
+  const Lanes2 one = {1, 1};
   for (int j = 0; j < 4; ++j) {
     // PlaneSide::estimate for the four vertices (the same operations in the same order); the bound
     // kRelative permanent of orient3d_bound where permanent >= 2^-900 s, else (tiny or NaN) the exact clip
-    const PlaneSide& f = b_faces.face[j];
-    const Lanes4 wx = ax - f.p.x, wy = ay - f.p.y, wz = az - f.p.z;
-    const Lanes4 dj = wx * f.n.x + wy * f.n.y + wz * f.n.z;
-    const Lanes4 fx = reinterpret_cast<Lanes4>(reinterpret_cast<Mask4>(wx) & kNoSign),
-                 fy = reinterpret_cast<Lanes4>(reinterpret_cast<Mask4>(wy) & kNoSign),
-                 fz = reinterpret_cast<Lanes4>(reinterpret_cast<Mask4>(wz) & kNoSign);
-    const Lanes4 permanent = fx * f.pn.x + fy * f.pn.y + fz * f.pn.z;
-    const Lanes4 ej = kOrient3dRelativeBound * permanent;
-    bounded &= permanent >= 0x1p-900 * (1 + fx + fy + fz);
-    const unsigned in = lane_bits(dj > ej), out_j = lane_bits(-dj > ej);
-    for (int i = 0; i < 4; ++i) {
-      d[j][i] = dj[i];
-      e[j][i] = ej[i];
+    const Point3 p = b[j == 0 ? 1 : 0], n = b_normals.n[j], pn = b_normals.pn[j];
+    unsigned in = 0, out_j = 0;
+    for (int h = 0; h < 2; ++h) {
+      const Lanes2 wx = ax[h] - p.x, wy = ay[h] - p.y, wz = az[h] - p.z;
+      const Lanes2 dj = wx * n.x + wy * n.y + wz * n.z;
+      const Lanes2 fx = magnitude(wx), fy = magnitude(wy), fz = magnitude(wz);
+      const Lanes2 permanent = fx * pn.x + fy * pn.y + fz * pn.z;
+      const Lanes2 ej = kOrient3dRelativeBound * permanent;
+      bounded &= permanent >= 0x1p-900 * (one + fx + fy + fz);
+      in |= lane_bits(dj > ej) << (2 * h);
+      out_j |= lane_bits(-dj > ej) << (2 * h);
+      polytope.set_value(2 * h, j, dj[0], ej[0]);
+      polytope.set_value(2 * h + 1, j, dj[1], ej[1]);
     }
     // face j's plane separates (all four certainly outside): empty, whatever the other planes' sides
-    if (out_j == 0xFu && (bounded[0] & bounded[1] & bounded[2] & bounded[3])) return true;
+    if (out_j == 0xFu && (bounded[0] & bounded[1])) return true;
     inner |= in << (4 * j);
     outer |= out_j << (4 * j);
   }
-  if (!(bounded[0] & bounded[1] & bounded[2] & bounded[3])) return false;
+  if (!(bounded[0] & bounded[1])) return false;
   if ((inner | outer) != 0xFFFFu) return false;  // a side within its bound
   for (int j = 0; j < 4; ++j) beyond |= static_cast<unsigned>((outer >> (4 * j) & 0xFu) != 0) << j;
   if (beyond == 0) {  // a in closed b
     out = whole(a, 0);
     return true;
   }
-  SimplePolytope polytope;
-  polytope.start(a, d, e);
+  polytope.start(a);
   for (int j = 0; j < 4; ++j) {
     if (!(beyond >> j & 1u)) continue;
     const SimplePolytope::Outcome o =
@@ -822,8 +820,15 @@ bool filtered_piece(const Point3 a[4], const Point3 b[4], unsigned& beyond, Piec
 
 Piece3 clip_filtered(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsigned& beyond,
                      ClipMemo3* memo) {
+  TetNormals b_normals;
+  b_normals.set(b);
+  return clip_filtered(a, a_faces, b, b_normals, beyond, memo);
+}
+
+Piece3 clip_filtered(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], const TetNormals& b_normals,
+                     unsigned& beyond, ClipMemo3* memo) {
   Piece3 out;  // the one object returned (no copy)
-  if (!filtered_piece(a, b, beyond, out)) out = clip(a, a_faces, b, beyond, memo);
+  if (!filtered_piece(a, b, b_normals, beyond, out)) out = clip(a, a_faces, b, beyond, memo);
   return out;
 }
 

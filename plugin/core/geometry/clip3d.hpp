@@ -84,6 +84,22 @@ struct TetFaces {
   int side(int j, Point3 x) const { return face[j].sign(x); }
 };
 
+// The normals of TetFaces' planes without their points (face j's plane passes through t[j == 0 ? 1 : 0]):
+// n[j], pn[j] are face[j].n, face[j].pn bit for bit. They depend on differences of t's vertices only, so an
+// exact translation of t (translate_exactly) keeps them. Kept for each tetrahedron of a mesh clipped many
+// times (24 doubles a tetrahedron), where forming TetFaces for every pair would repeat them.
+struct TetNormals {
+  Point3 n[4], pn[4];
+  void set(const Point3 t[4]) {
+    TetFaces faces;
+    faces.set(t);
+    for (int j = 0; j < 4; ++j) {
+      n[j] = faces.face[j].n;
+      pn[j] = faces.face[j].pn;
+    }
+  }
+};
+
 // Values clip finds for one tetrahedron a clipped against many tetrahedra b (a mapped solid tetrahedron and
 // the fluid tetrahedra it meets): crossings that involve points of b, each a function of its arguments alone
 // (crossing() orders them itself), and orientation signs that the floating-point filter left to the exact
@@ -190,6 +206,9 @@ Piece3 clip(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsig
 // (shared faces, edges, vertices) are decided exactly as there.
 Piece3 clip_filtered(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], unsigned& beyond,
                      ClipMemo3* memo = nullptr);
+// The same with b's plane normals given (b_normals.set(b), or of b before an exact translation).
+Piece3 clip_filtered(const Point3 a[4], const TetFaces& a_faces, const Point3 b[4], const TetNormals& b_normals,
+                     unsigned& beyond, ClipMemo3* memo = nullptr);
 
 // out = t - o for the n points of t when every coordinate's subtraction is exact (its TwoSum error term is
 // zero); false otherwise. An exact translation changes no orient3d sign and no lexicographic order, so clip

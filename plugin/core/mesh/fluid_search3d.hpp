@@ -45,6 +45,18 @@ struct Tetrahedra {
   static Piece3 clip(const Point3 t[4], const Faces& faces, const Point3 k[4], unsigned& beyond) {
     return dlmfsi::clip_filtered(t, faces.planes, k, beyond, &faces.memo);
   }
+  // What clip keeps of each fluid tetrahedron for every t (FluidSearchOf keeps them once per mesh): its
+  // face planes' normals.
+  using ElementPlanes = TetNormals;
+  static void element_planes(const Mesh3& m, int k, TetNormals& out) {
+    Point3 c[4];
+    m.corners(k, c);
+    out.set(c);
+  }
+  static Piece3 clip(const Point3 t[4], const Faces& faces, const Point3 k[4], const TetNormals& k_planes,
+                     unsigned& beyond) {
+    return dlmfsi::clip_filtered(t, faces.planes, k, k_planes, beyond, &faces.memo);
+  }
   struct Rest {};  // the clipper tells nothing of t beyond a face
   static Piece3 clip(const Point3 t[4], const Faces& faces, const Point3 k[4], unsigned& beyond, Rest&) {
     return dlmfsi::clip_filtered(t, faces.planes, k, beyond, &faces.memo);

@@ -2,6 +2,7 @@
 #pragma once
 #include <algorithm>
 #include <cstddef>
+#include <type_traits>
 #include <vector>
 
 #include "mesh/fluid_grid.hpp"
@@ -16,6 +17,19 @@ namespace dlmfsi {
 // and reaches_beyond(beyond, i) (t reaches beyond facet i of k), and Rest with clip(t, faces, k, beyond,
 // rest), rest_facet(rest), rest_piece(rest), rest_corners(rest): what clip tells of the part of t beyond one
 // facet of k when t ∩ k is t's part on the inner side of that facet's line or plane (facet -1 otherwise).
+// Elements::ElementPlanes, when Elements keeps something of each fluid element for clip (kept: then
+// element_planes(mesh, k, out) forms it and clip(t, faces, k_corners, planes, beyond) uses it).
+template <class Elements, class = void>
+struct ElementPlanesOf {
+  struct type {};
+  static constexpr bool kept = false;
+};
+template <class Elements>
+struct ElementPlanesOf<Elements, std::void_t<typename Elements::ElementPlanes>> {
+  using type = typename Elements::ElementPlanes;
+  static constexpr bool kept = true;
+};
+
 template <class Elements>
 class FluidSearchOf {
  public:
@@ -25,7 +39,12 @@ class FluidSearchOf {
   using PieceT = typename Elements::Piece;
 
   explicit FluidSearchOf(const FluidGridOf<Elements>& grid)
-      : grid_(grid), fluid_(grid.fluid()), stamp_of_(grid.fluid().size(), 0u) {}
+      : grid_(grid), fluid_(grid.fluid()), stamp_of_(grid.fluid().size(), 0u) {
+    if constexpr (Planes::kept) {
+      planes_.resize(static_cast<std::size_t>(fluid_.size()));
+      for (int k = 0; k < fluid_.size(); ++k) Elements::element_planes(fluid_, k, planes_[static_cast<std::size_t>(k)]);
+    }
+  }
 
   // A fluid element whose closed set contains p, by a visibility walk from hint (>= 0) with exact
   // predicates, falling back to the grid; -1 when p lies outside the fluid mesh.
@@ -68,6 +87,19 @@ class FluidSearchOf {
       if ((mask & (1u << c)) && !in_element(k, t[c])) return false;
     return true;
   }
+  // t ∩ k, k's corners given (as clipped): with what is kept of k when Elements keeps something.
+  PieceT clip(const PointT t[kCorners], const typename Elements::Faces& t_faces, int k, const PointT k_corners[kCorners],
+              unsigned& beyond) const {
+    if constexpr (Planes::kept) return Elements::clip(t, t_faces, k_corners, planes_[static_cast<std::size_t>(k)], beyond);
+    else return Elements::clip(t, t_faces, k_corners, beyond);
+  }
+  // The same for the walk's first element, with what clip tells of t beyond a facet (an Elements that keeps
+  // something of each element tells nothing there: rest stays as it is).
+  PieceT clip_first(const PointT t[kCorners], const typename Elements::Faces& t_faces, int k,
+                    const PointT k_corners[kCorners], unsigned& beyond, typename Elements::Rest& rest) const {
+    if constexpr (Planes::kept) return clip(t, t_faces, k, k_corners, beyond);
+    else return Elements::clip(t, t_faces, k_corners, beyond, rest);
+  }
   bool mark(int k) {
     if (stamp_of_[k] == stamp_) return false;
     stamp_of_[k] = stamp_;
@@ -78,6 +110,8 @@ class FluidSearchOf {
   std::vector<unsigned> stamp_of_;
   unsigned stamp_ = 0;
   std::vector<int> queue_;
+  using Planes = ElementPlanesOf<Elements>;
+  std::vector<typename Planes::type> planes_;  // planes_[k]: what clip keeps of element k (when kept)
 };
 
 template <class Elements>
@@ -140,14 +174,14 @@ bool FluidSearchOf<Elements>::walk(const PointT t_absolute[kCorners], PointT ori
   typename Elements::Rest rest;
   if (Elements::kClipHintFirst && hint >= 0 && hint < fluid_.size()) {
     if (!corners_of(hint)) return false;
-    first = Elements::clip(t, t_faces, k_corners, beyond, rest);
+    first = clip_first(t, t_faces, hint, k_corners, beyond, rest);
     if (first.n > 0) start = hint;
   }
   if (start < 0) {
     start = locate(Elements::centroid(t_absolute), hint);
     if (start >= 0 && !(Elements::kClipHintFirst && start == hint)) {  // the hint's piece is empty already
       if (!corners_of(start)) return false;
-      first = Elements::clip(t, t_faces, k_corners, beyond, rest);
+      first = clip_first(t, t_faces, start, k_corners, beyond, rest);
     }
   }
   if (start >= 0) {
@@ -174,7 +208,7 @@ bool FluidSearchOf<Elements>::walk(const PointT t_absolute[kCorners], PointT ori
         const int k = queue_[q];
         if (q > 0) {
           if (!corners_of(k)) return false;
-          const PieceT piece = Elements::clip(t, t_faces, k_corners, beyond);
+          const PieceT piece = clip(t, t_faces, k, k_corners, beyond);
           if (piece.n == 0) continue;
           visit(k, piece);
         } else {
@@ -203,7 +237,7 @@ bool FluidSearchOf<Elements>::walk(const PointT t_absolute[kCorners], PointT ori
       exact = false;
       return;
     }
-    const PieceT piece = Elements::clip(t, t_faces, k_corners, beyond);
+    const PieceT piece = clip(t, t_faces, k, k_corners, beyond);
     if (piece.n > 0) {
       hint = k;
       visit(k, piece);
