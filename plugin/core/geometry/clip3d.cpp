@@ -772,33 +772,45 @@ bool filtered_piece(const Point3 a[4], const Point3 b[4], const TetNormals& b_no
   // the values and bounds go straight to the polytope's first four vertices (start() takes them there)
   SimplePolytope polytope;
   unsigned inner = 0, outer = 0;  // bit 4 j + i: a's vertex i certainly inside, outside b's face j
-  Mask2 bounded = {-1, -1};
+  unsigned bounded = 0xFu;        // bit i: vertex i's permanents all >= 2^-900 s so far
   beyond = 0;
   out.n = 0;
   const Lanes2 one = {1, 1};
+  // a's vertices less the point of b's planes (b[1] for plane 0, b[0] for planes 1-3: TetFaces' p), their
+  // magnitudes and the permanents' least value 2^-900 s, per point q and half h
+  Lanes2 wx[2][2], wy[2][2], wz[2][2], fx[2][2], fy[2][2], fz[2][2], least[2][2];
+  for (int q = 0; q < 2; ++q)
+    for (int h = 0; h < 2; ++h) {
+      wx[q][h] = ax[h] - b[1 - q].x;
+      wy[q][h] = ay[h] - b[1 - q].y;
+      wz[q][h] = az[h] - b[1 - q].z;
+      fx[q][h] = magnitude(wx[q][h]);
+      fy[q][h] = magnitude(wy[q][h]);
+      fz[q][h] = magnitude(wz[q][h]);
+      least[q][h] = 0x1p-900 * (one + fx[q][h] + fy[q][h] + fz[q][h]);
+    }
   for (int j = 0; j < 4; ++j) {
     // PlaneSide::estimate for the four vertices (the same operations in the same order); the bound
     // kRelative permanent of orient3d_bound where permanent >= 2^-900 s, else (tiny or NaN) the exact clip
-    const Point3 p = b[j == 0 ? 1 : 0], n = b_normals.n[j], pn = b_normals.pn[j];
+    const int q = j == 0 ? 0 : 1;
+    const Point3 n = b_normals.n[j], pn = b_normals.pn[j];
     unsigned in = 0, out_j = 0;
     for (int h = 0; h < 2; ++h) {
-      const Lanes2 wx = ax[h] - p.x, wy = ay[h] - p.y, wz = az[h] - p.z;
-      const Lanes2 dj = wx * n.x + wy * n.y + wz * n.z;
-      const Lanes2 fx = magnitude(wx), fy = magnitude(wy), fz = magnitude(wz);
-      const Lanes2 permanent = fx * pn.x + fy * pn.y + fz * pn.z;
+      const Lanes2 dj = wx[q][h] * n.x + wy[q][h] * n.y + wz[q][h] * n.z;
+      const Lanes2 permanent = fx[q][h] * pn.x + fy[q][h] * pn.y + fz[q][h] * pn.z;
       const Lanes2 ej = kOrient3dRelativeBound * permanent;
-      bounded &= permanent >= 0x1p-900 * (one + fx + fy + fz);
+      bounded &= lane_bits(permanent >= least[q][h]) << (2 * h) | (0x3u << (2 - 2 * h));
       in |= lane_bits(dj > ej) << (2 * h);
       out_j |= lane_bits(-dj > ej) << (2 * h);
       polytope.set_value(2 * h, j, dj[0], ej[0]);
       polytope.set_value(2 * h + 1, j, dj[1], ej[1]);
     }
     // face j's plane separates (all four certainly outside): empty, whatever the other planes' sides
-    if (out_j == 0xFu && (bounded[0] & bounded[1])) return true;
+    if (out_j == 0xFu && bounded == 0xFu) return true;
     inner |= in << (4 * j);
     outer |= out_j << (4 * j);
   }
-  if (!(bounded[0] & bounded[1])) return false;
+  if (bounded != 0xFu) return false;
   if ((inner | outer) != 0xFFFFu) return false;  // a side within its bound
   for (int j = 0; j < 4; ++j) beyond |= static_cast<unsigned>((outer >> (4 * j) & 0xFu) != 0) << j;
   if (beyond == 0) {  // a in closed b

@@ -12,7 +12,12 @@ namespace dlmfsi {
 
 struct Piece3 {
   static constexpr int kMaxVertices = 16, kMaxFaces = 8, kMaxFaceIndices = 64;
-  Point3 v[kMaxVertices];
+  // v[0 .. n): the vertices. A member of an anonymous union, which the constructor leaves uninitialized (a
+  // Point3 is zero-initialized: a Piece3 made for every pair clipped would clear 384 bytes).
+  union {
+    Point3 v[kMaxVertices];
+  };
+  Piece3() {}
   int n = 0;  // number of vertices; 0 when the interiors do not meet
   // Face f is the cycle of vertex indices face_index[face_start[f] .. face_start[f + 1]), in order around
   // the face (either direction). Vertex 0 is the lexicographically smallest vertex.

@@ -71,23 +71,33 @@ Moments moments(const Piece3& piece) {
   if (size > 0 && std::isfinite(size)) e = frexp_exponent(size);
   out.scale = power_of_two(e);
   const double shrink = power_of_two(-e);
-  double first[3] = {0, 0, 0}, second[3][3] = {};
-  piece.for_each_tetrahedron_from(apex, [&](int, int ip, int iq, int ir) {
-    const Point3 a = piece.v[ip] - o, b = piece.v[iq] - o, c = piece.v[ir] - o;
-    const double v = std::fabs(dot(a, cross(b, c))) / 6;
-    out.volume += v;
-    const Point3 as = shrink * a, bs = shrink * b, cs = shrink * c, s = as + bs + cs;
-    const double sv[3] = {s.x, s.y, s.z}, av[3] = {as.x, as.y, as.z}, bv[3] = {bs.x, bs.y, bs.z},
-                 cv[3] = {cs.x, cs.y, cs.z};
-    // the upper triangle (each term is symmetric in i, j to the bit: products commute)
-    for (int i = 0; i < 3; ++i) {
-      first[i] += v * sv[i] / 4;
-      for (int j = i; j < 3; ++j) second[i][j] += v / 20 * (av[i] * av[j] + bv[i] * bv[j] + cv[i] * cv[j] + sv[i] * sv[j]);
+  // The sums in local variables (registers) rather than arrays a lambda updates through memory: each
+  // tetrahedron's terms as before, in the same order (the same sums bit for bit).
+  double volume = 0, f0 = 0, f1 = 0, f2 = 0, m00 = 0, m01 = 0, m02 = 0, m11 = 0, m12 = 0, m22 = 0;
+  for (int k = 0; k < piece.faces; ++k) {  // Piece3::for_each_tetrahedron_from(apex), written out
+    if (piece.face_vertices[k] >> apex & 1u) continue;
+    const int start = piece.face_start[k], end = piece.face_start[k + 1];
+    const Point3 a = piece.v[piece.face_index[start]] - o, as = shrink * a;
+    for (int i = start + 1; i + 1 < end; ++i) {
+      const Point3 b = piece.v[piece.face_index[i]] - o, c = piece.v[piece.face_index[i + 1]] - o;
+      const double v = std::fabs(dot(a, cross(b, c))) / 6;
+      volume += v;
+      const Point3 bs = shrink * b, cs = shrink * c, t = as + bs + cs;
+      f0 += v * t.x / 4;
+      f1 += v * t.y / 4;
+      f2 += v * t.z / 4;
+      const double w = v / 20;
+      m00 += w * (as.x * as.x + bs.x * bs.x + cs.x * cs.x + t.x * t.x);
+      m01 += w * (as.x * as.y + bs.x * bs.y + cs.x * cs.y + t.x * t.y);
+      m02 += w * (as.x * as.z + bs.x * bs.z + cs.x * cs.z + t.x * t.z);
+      m11 += w * (as.y * as.y + bs.y * bs.y + cs.y * cs.y + t.y * t.y);
+      m12 += w * (as.y * as.z + bs.y * bs.z + cs.y * cs.z + t.y * t.z);
+      m22 += w * (as.z * as.z + bs.z * bs.z + cs.z * cs.z + t.z * t.z);
     }
-  });
-  second[1][0] = second[0][1];
-  second[2][0] = second[0][2];
-  second[2][1] = second[1][2];
+  }
+  out.volume = volume;
+  const double first[3] = {f0, f1, f2};
+  const double second[3][3] = {{m00, m01, m02}, {m01, m11, m12}, {m02, m12, m22}};
   if (!(out.volume > 0)) return out;
   const double c[3] = {first[0] / out.volume, first[1] / out.volume, first[2] / out.volume};
   out.centroid = o + out.scale * Point3{c[0], c[1], c[2]};
