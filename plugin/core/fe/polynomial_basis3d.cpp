@@ -112,24 +112,40 @@ void PolynomialBasis3::evaluate(int k, Point3 xi, double* out) const {
   }
 }
 
+// Degree 1: 4 coefficients per function (monomials 1, xi1, xi2, xi3), the gradient c1 J_1. + c2 J_2. + c3 J_3.;
+// degree 0: one, a zero gradient. The sizes and the inverse jacobian are read once (as far as the compiler
+// knows the outputs might alias the members); each value is ((c0 + c1 xi1) + c2 xi2) + c3 xi3 and each
+// derivative (c1 J_1a + c2 J_2a) + c3 J_3a, in that order.
 void PolynomialBasis3::evaluate_affine(int k, Point3 xi, double* value, double* gradient) const {
-  values_affine(k, xi, value);
+  const size_t n = functions_.size();
   const double* c = coefficients(k);
+  if (nm_ == 1) {
+    for (size_t f = 0; f < n; ++f) value[f] = c[f];
+    std::fill(gradient, gradient + 3 * n, 0.0);
+    return;
+  }
   const double* j = inverse_jacobian(k);
-  for (size_t f = 0; f < functions_.size(); ++f, c += nm_) {
+  const double j0 = j[0], j1 = j[1], j2 = j[2], j3 = j[3], j4 = j[4], j5 = j[5], j6 = j[6], j7 = j[7], j8 = j[8];
+  const double x = xi.x, y = xi.y, z = xi.z;
+  for (size_t f = 0; f < n; ++f, c += 4) {
+    const double c0 = c[0], c1 = c[1], c2 = c[2], c3 = c[3];
+    value[f] = c0 + c1 * x + c2 * y + c3 * z;
     double* g = gradient + 3 * f;
-    if (nm_ == 1) {
-      g[0] = g[1] = g[2] = 0;
-      continue;
-    }
-    for (int a = 0; a < 3; ++a) g[a] = c[1] * j[a] + c[2] * j[3 + a] + c[3] * j[6 + a];
+    g[0] = c1 * j0 + c2 * j3 + c3 * j6;
+    g[1] = c1 * j1 + c2 * j4 + c3 * j7;
+    g[2] = c1 * j2 + c2 * j5 + c3 * j8;
   }
 }
 
 void PolynomialBasis3::values_affine(int k, Point3 xi, double* value) const {
+  const size_t n = functions_.size();
   const double* c = coefficients(k);
-  for (size_t f = 0; f < functions_.size(); ++f, c += nm_)
-    value[f] = nm_ == 1 ? c[0] : c[0] + c[1] * xi.x + c[2] * xi.y + c[3] * xi.z;  // monomials 1, xi1, xi2, xi3
+  if (nm_ == 1) {
+    for (size_t f = 0; f < n; ++f) value[f] = c[f];
+    return;
+  }
+  const double x = xi.x, y = xi.y, z = xi.z;
+  for (size_t f = 0; f < n; ++f, c += 4) value[f] = c[0] + c[1] * x + c[2] * y + c[3] * z;
 }
 
 }  // namespace dlmfsi
