@@ -10,7 +10,6 @@
 #include "ff++.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cstdint>
 #include <cstring>
 #include <memory>
@@ -75,7 +74,7 @@ class SpaceBasis3 : public dlmfsi_ff::SpaceBasisOf<3, FESpace3> {
  public:
   // parts: the elements vh's element is the sum of, in order (space_parts3), or empty when it is one element.
   explicit SpaceBasis3(const FESpace3& vh, const std::vector<const TypeOfFE3*>& parts = {})
-      : SpaceBasisOf(vh), same_everywhere_(values_independent_of_element(vh, parts)), serial_(++serials_) {}
+      : SpaceBasisOf(vh), same_everywhere_(values_independent_of_element(vh, parts)) {}
   void evaluate(int k, Point3 xi, double* out) const override {
     basis_functions(k, xi, Fop_D0 | Fop_D1, out);
   }
@@ -88,8 +87,8 @@ class SpaceBasis3 : public dlmfsi_ff::SpaceBasisOf<3, FESpace3> {
   // One FreeFEM element, P03d, P13d, P1b3d or P23d, or a sum of those (a composite such as
   // [P13d, P13d, P13d, P1b3d], whose values are its parts' values side by side): the basis functions' values
   // at a reference point are polynomials of its barycentric coordinates alone, the same on every tetrahedron
-  // (the derivatives are not). values() then gives every element element 0's values, kept per thread for the
-  // last point asked, so that the fits' check of every element at one point evaluates element 0 only.
+  // (the derivatives are not). values() then gives every element element 0's values, kept for the last point
+  // asked, so that the fits' check of every element at one point evaluates element 0 only.
   bool same_everywhere() const { return same_everywhere_; }
 
  private:
@@ -110,23 +109,18 @@ class SpaceBasis3 : public dlmfsi_ff::SpaceBasisOf<3, FESpace3> {
       }
   }
 
-  // values(0, xi, out), from this thread's kept values when they are element 0's at xi (bit for bit).
+  // values(0, xi, out), from the kept values when they are element 0's at xi (bit for bit). The core calls a
+  // Basis from one thread at a time (it need not be thread-safe: coupling3d.cpp), as the kept values assume.
   void element0_values(Point3 xi, double* out) const {
-    struct Kept {
-      long serial = 0;  // the space's (serials_ start at 1)
-      double xi[3];
-      std::vector<double> values;  // Basis3::values' layout
-    };
-    thread_local Kept kept;
     const double at[3] = {xi.x, xi.y, xi.z};
     const std::size_t n = static_cast<std::size_t>(nd_) * nc_;
-    if (kept.serial != serial_ || std::memcmp(kept.xi, at, sizeof at) != 0) {
-      kept.values.resize(4 * n);
-      basis_functions(0, xi, Fop_D0, kept.values.data());
-      kept.serial = serial_;
-      std::memcpy(kept.xi, at, sizeof at);
+    if (kept_values_.empty() || std::memcmp(kept_xi_, at, sizeof at) != 0) {
+      kept_values_.resize(4 * n);
+      basis_functions(0, xi, Fop_D0, kept_values_.data());
+      std::memcpy(kept_xi_, at, sizeof at);
     }
-    for (std::size_t f = 0; f < n; ++f) out[4 * f] = kept.values[4 * f];
+    const double* v = kept_values_.data();
+    for (std::size_t f = 0; f < n; ++f) out[4 * f] = v[4 * f];
   }
 
   static bool values_independent_of_element(const FESpace3& vh, const std::vector<const TypeOfFE3*>& parts) {
@@ -137,11 +131,9 @@ class SpaceBasis3 : public dlmfsi_ff::SpaceBasisOf<3, FESpace3> {
   }
 
   const bool same_everywhere_;
-  const long serial_;  // no two spaces of the process have the same one
-  static std::atomic<long> serials_;
+  mutable double kept_xi_[3] = {0, 0, 0};
+  mutable std::vector<double> kept_values_;  // element 0's values at kept_xi_ (Basis3::values' layout), or empty
 };
-
-std::atomic<long> SpaceBasis3::serials_{0};
 
 // The fluid side of the last call; parts: as SpaceBasis3's.
 struct FluidCache3 : dlmfsi_ff::SideCache<FESpace3, SpaceBasis3, dlmfsi::FluidSide3> {
