@@ -30,6 +30,16 @@ struct Tetrahedra {
     c[i] = p;
     return orient3d(c[0], c[1], c[2], c[3]);
   }
+  // The same with k's face normals kept (element_planes): the floating-point filter on them first (face i's
+  // plane is TetFaces' face i, whose sign is this orientation's), the exact orientation when it cannot decide.
+  static int side(const Mesh3& m, int k, int i, Point3 p, const TetNormals& planes) {
+    PlaneSide face;
+    face.p = m.vertex(k, i == 0 ? 1 : 0);
+    face.n = planes.n[i];
+    face.pn = planes.pn[i];
+    const int s = face.filter(p);
+    return s != 0 ? s : side(m, k, i, p);
+  }
   // out = t - o when exact (translate_exactly in clip3d.hpp), for the search's pieces in local coordinates.
   static bool translate(const Point3 t[4], Point3 o, Point3 out[4]) { return translate_exactly(t, 4, o, out); }
   // What clip keeps of t for all the fluid tetrahedra it meets: its face planes, and the crossings found so

@@ -18,7 +18,8 @@ namespace dlmfsi {
 // rest), rest_facet(rest), rest_piece(rest), rest_corners(rest): what clip tells of the part of t beyond one
 // facet of k when t ∩ k is t's part on the inner side of that facet's line or plane (facet -1 otherwise).
 // Elements::ElementPlanes, when Elements keeps something of each fluid element for clip (kept: then
-// element_planes(mesh, k, out) forms it and clip(t, faces, k_corners, planes, beyond) uses it).
+// element_planes(mesh, k, out) forms it, and clip(t, faces, k_corners, planes, beyond) and side(mesh, k, i, p,
+// planes) use it).
 template <class Elements, class = void>
 struct ElementPlanesOf {
   struct type {};
@@ -75,10 +76,15 @@ class FluidSearchOf {
   // for_each_piece, with the pieces relative to origin when Local (then false when a translation is not exact).
   template <bool Local, class Visit>
   bool walk(const PointT t_absolute[kCorners], PointT origin, int& hint, Visit& visit);
+  // Elements::side(fluid_, k, i, p), with what is kept of k when Elements keeps something.
+  int side(int k, int i, PointT p) const {
+    if constexpr (Planes::kept) return Elements::side(fluid_, k, i, p, planes_[static_cast<std::size_t>(k)]);
+    else return Elements::side(fluid_, k, i, p);
+  }
   // Does p lie in the closed element k?
   bool in_element(int k, PointT p) const {
     for (int i = 0; i < kCorners; ++i)
-      if (Elements::side(fluid_, k, i, p) < 0) return false;
+      if (side(k, i, p) < 0) return false;
     return true;
   }
   // Do the corners of t in mask (bit i: corner i) lie in the closed element k?
@@ -126,7 +132,7 @@ int FluidSearchOf<Elements>::locate(PointT p, int hint) const {
       int next = -2;
       for (int r = 0; r < kCorners; ++r) {
         const int i = (r + step) % kCorners;
-        if (Elements::side(m, k, i, p) < 0) {
+        if (side(k, i, p) < 0) {
           next = m.neighbours[k][i];
           break;
         }
