@@ -793,7 +793,7 @@ bool filtered_piece(const Point3 a[4], const Point3 b[4], const TetNormals& b_no
     // PlaneSide::estimate for the four vertices (the same operations in the same order); the bound
     // kRelative permanent of orient3d_bound where permanent >= 2^-900 s, else (tiny or NaN) the exact clip
     const int q = j == 0 ? 0 : 1;
-    const Point3 n = b_normals.n[j], pn = b_normals.pn[j];
+    const Point3 n = b_normals.n(j), pn = b_normals.pn(j);
     unsigned in = 0, out_j = 0;
     for (int h = 0; h < 2; ++h) {
       const Lanes2 dj = wx[q][h] * n.x + wy[q][h] * n.y + wz[q][h] * n.z;

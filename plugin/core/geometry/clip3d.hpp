@@ -90,17 +90,25 @@ struct TetFaces {
 };
 
 // The normals of TetFaces' planes without their points (face j's plane passes through t[j == 0 ? 1 : 0]):
-// n[j], pn[j] are face[j].n, face[j].pn bit for bit. They depend on differences of t's vertices only, so an
+// n(j), pn(j) are face[j].n, face[j].pn bit for bit. They depend on differences of t's vertices only, so an
 // exact translation of t (translate_exactly) keeps them. Kept for each tetrahedron of a mesh clipped many
-// times (24 doubles a tetrahedron), where forming TetFaces for every pair would repeat them.
+// times (24 doubles a tetrahedron), where forming TetFaces for every pair would repeat them. Plain doubles:
+// an array of them is not cleared when it is made.
 struct TetNormals {
-  Point3 n[4], pn[4];
+  double normal[4][3], permanent[4][3];
+  Point3 n(int j) const { return {normal[j][0], normal[j][1], normal[j][2]}; }
+  Point3 pn(int j) const { return {permanent[j][0], permanent[j][1], permanent[j][2]}; }
   void set(const Point3 t[4]) {
     TetFaces faces;
     faces.set(t);
     for (int j = 0; j < 4; ++j) {
-      n[j] = faces.face[j].n;
-      pn[j] = faces.face[j].pn;
+      const PlaneSide& f = faces.face[j];
+      normal[j][0] = f.n.x;
+      normal[j][1] = f.n.y;
+      normal[j][2] = f.n.z;
+      permanent[j][0] = f.pn.x;
+      permanent[j][1] = f.pn.y;
+      permanent[j][2] = f.pn.z;
     }
   }
 };

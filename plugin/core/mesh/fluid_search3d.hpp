@@ -35,8 +35,8 @@ struct Tetrahedra {
   static int side(const Mesh3& m, int k, int i, Point3 p, const TetNormals& planes) {
     PlaneSide face;
     face.p = m.vertex(k, i == 0 ? 1 : 0);
-    face.n = planes.n[i];
-    face.pn = planes.pn[i];
+    face.n = planes.n(i);
+    face.pn = planes.pn(i);
     const int s = face.filter(p);
     return s != 0 ? s : side(m, k, i, p);
   }
@@ -55,8 +55,8 @@ struct Tetrahedra {
   static Piece3 clip(const Point3 t[4], const Faces& faces, const Point3 k[4], unsigned& beyond) {
     return dlmfsi::clip_filtered(t, faces.planes, k, beyond, &faces.memo);
   }
-  // What clip keeps of each fluid tetrahedron for every t (FluidSearchOf keeps them once per mesh): its
-  // face planes' normals.
+  // What clip keeps of each fluid tetrahedron for every t (FluidSearchOf forms them once per mesh, for the
+  // tetrahedra it meets): its face planes' normals.
   using ElementPlanes = TetNormals;
   static void element_planes(const Mesh3& m, int k, TetNormals& out) {
     Point3 c[4];

@@ -2,6 +2,7 @@
 #pragma once
 #include <algorithm>
 #include <cstddef>
+#include <memory>
 #include <type_traits>
 #include <vector>
 
@@ -42,8 +43,9 @@ class FluidSearchOf {
   explicit FluidSearchOf(const FluidGridOf<Elements>& grid)
       : grid_(grid), fluid_(grid.fluid()), stamp_of_(grid.fluid().size(), 0u) {
     if constexpr (Planes::kept) {
-      planes_.resize(static_cast<std::size_t>(fluid_.size()));
-      for (int k = 0; k < fluid_.size(); ++k) Elements::element_planes(fluid_, k, planes_[static_cast<std::size_t>(k)]);
+      // formed on first use (a solid often meets a small part of the fluid); new[] leaves them unset
+      planes_.reset(new typename Planes::type[static_cast<std::size_t>(fluid_.size())]);
+      formed_.assign(static_cast<std::size_t>(fluid_.size()), 0);
     }
   }
 
@@ -78,8 +80,19 @@ class FluidSearchOf {
   bool walk(const PointT t_absolute[kCorners], PointT origin, int& hint, Visit& visit);
   // Elements::side(fluid_, k, i, p), with what is kept of k when Elements keeps something.
   int side(int k, int i, PointT p) const {
-    if constexpr (Planes::kept) return Elements::side(fluid_, k, i, p, planes_[static_cast<std::size_t>(k)]);
+    if constexpr (Planes::kept) return Elements::side(fluid_, k, i, p, planes(k));
     else return Elements::side(fluid_, k, i, p);
+  }
+  // What is kept of element k (when kept), formed on first use.
+  const typename ElementPlanesOf<Elements>::type& planes(int k) const {
+    const std::size_t at = static_cast<std::size_t>(k);
+    if constexpr (Planes::kept) {
+      if (!formed_[at]) {
+        Elements::element_planes(fluid_, k, planes_[at]);
+        formed_[at] = 1;
+      }
+    }
+    return planes_[at];
   }
   // Does p lie in the closed element k?
   bool in_element(int k, PointT p) const {
@@ -96,7 +109,7 @@ class FluidSearchOf {
   // t ∩ k, k's corners given (as clipped): with what is kept of k when Elements keeps something.
   PieceT clip(const PointT t[kCorners], const typename Elements::Faces& t_faces, int k, const PointT k_corners[kCorners],
               unsigned& beyond) const {
-    if constexpr (Planes::kept) return Elements::clip(t, t_faces, k_corners, planes_[static_cast<std::size_t>(k)], beyond);
+    if constexpr (Planes::kept) return Elements::clip(t, t_faces, k_corners, planes(k), beyond);
     else return Elements::clip(t, t_faces, k_corners, beyond);
   }
   // The same for the walk's first element, with what clip tells of t beyond a facet (an Elements that keeps
@@ -117,7 +130,10 @@ class FluidSearchOf {
   unsigned stamp_ = 0;
   std::vector<int> queue_;
   using Planes = ElementPlanesOf<Elements>;
-  std::vector<typename Planes::type> planes_;  // planes_[k]: what clip keeps of element k (when kept)
+  // planes_[k]: what clip keeps of element k (when kept), set when formed_[k] (per thread: mutable in the
+  // const searches)
+  mutable std::unique_ptr<typename Planes::type[]> planes_;
+  mutable std::vector<unsigned char> formed_;
 };
 
 template <class Elements>
