@@ -32,33 +32,12 @@ namespace {
 
 using dlmfsi::Point;
 
-// The element a script calls name (FreeFEM's table of global names), or null.
-const TypeOfFE* named_element(const char* name) {
-  const C_F0 c = Global.Find(name);
-  if (c.left() != atype<TypeOfFE*>() || !c.LeftValue()) return nullptr;
-  return GetAny<TypeOfFE*>((*c.LeftValue())(NullStack));
-}
-
 // Is t one of P0, P1, P1b, P2 (Lagrange)? Their basis functions' values at a reference point are
 // polynomials of its barycentric coordinates alone (P1b: l_i - 9 l0 l1 l2 and 27 l0 l1 l2), so the same on
 // every triangle. No other element is taken to be so (RT0's values depend on the triangle's edges).
 bool barycentric_values(const TypeOfFE* t) {
-  static const TypeOfFE* const p1b = named_element("P1b");  // FreeFEM exports no C++ name for it
+  static const TypeOfFE* const p1b = dlmfsi_ff::named_element<TypeOfFE>("P1b");  // FreeFEM exports no C++ name for it
   return t && (t == &P0Lagrange || t == &P1Lagrange || t == &P2Lagrange || t == p1b);
-}
-
-// Is t the sum of parts in this order (FreeFEM's composite element: each part's dofs after the previous
-// part's, dof d of part j as dof d of it, its components after the previous part's)?
-bool sum_of(const TypeOfFE& t, const std::vector<const TypeOfFE*>& parts) {
-  int dof = 0, components = 0;
-  for (size_t j = 0; j < parts.size(); ++j) {
-    if (!parts[j] || dof + parts[j]->NbDoF > t.NbDoF) return false;
-    for (int d = 0; d < parts[j]->NbDoF; ++d)
-      if (t.fromFE[dof + d] != static_cast<int>(j) || t.fromDF[dof + d] != d) return false;
-    dof += parts[j]->NbDoF;
-    components += parts[j]->N;
-  }
-  return dof == t.NbDoF && components == t.N;
 }
 
 // The elements a script's space declared as a composite (fespace Rh(Th, [P1, P1, P1b, P1b])) is the sum of,
@@ -144,7 +123,7 @@ class SpaceBasis : public dlmfsi_ff::SpaceBasisOf<2, FESpace> {
     for (int k = 1; k < vh.Th.nt; ++k)
       if (vh.TFE[k] != t) return false;
     if (parts.empty()) return barycentric_values(t);
-    if (!sum_of(*t, parts)) return false;
+    if (!dlmfsi_ff::sum_of(*t, parts)) return false;
     return std::all_of(parts.begin(), parts.end(), barycentric_values);
   }
 

@@ -30,35 +30,15 @@ namespace {
 
 using dlmfsi::Point3;
 
-// The element a script calls name (FreeFEM's table of global names), or null.
-const TypeOfFE3* named_element3(const char* name) {
-  const C_F0 c = Global.Find(name);
-  if (c.left() != atype<TypeOfFE3*>() || !c.LeftValue()) return nullptr;
-  return GetAny<TypeOfFE3*>((*c.LeftValue())(NullStack));
-}
-
 // Is t one of P03d, P13d, P1b3d, P23d? Their basis functions' values at a reference point are polynomials
 // of its barycentric coordinates alone (P1b3d: l_i - b/4 and b, b = 256 l0 l1 l2 l3; P23d: l_i (2 l_i - 1)
 // and 4 l_i l_j on the reference edges), so the same on every tetrahedron. No other element is taken to be so
 // (RT03d's and Edge03d's values depend on the tetrahedron's faces and edges).
 bool barycentric_values3(const TypeOfFE3* t) {
-  static const TypeOfFE3* const known[4] = {named_element3("P03d"), named_element3("P13d"), named_element3("P1b3d"),
-                                            named_element3("P23d")};
+  using dlmfsi_ff::named_element;
+  static const TypeOfFE3* const known[4] = {named_element<TypeOfFE3>("P03d"), named_element<TypeOfFE3>("P13d"),
+                                            named_element<TypeOfFE3>("P1b3d"), named_element<TypeOfFE3>("P23d")};
   return t && std::find(known, known + 4, t) != known + 4;
-}
-
-// Is t the sum of parts in this order (FreeFEM's composite element: each part's dofs after the previous
-// part's, dof d of part j as dof d of it, its components after the previous part's)?
-bool sum_of3(const TypeOfFE3& t, const std::vector<const TypeOfFE3*>& parts) {
-  int dof = 0, components = 0;
-  for (size_t j = 0; j < parts.size(); ++j) {
-    if (!parts[j] || dof + parts[j]->NbDoF > t.NbDoF) return false;
-    for (int d = 0; d < parts[j]->NbDoF; ++d)
-      if (t.fromFE[dof + d] != static_cast<int>(j) || t.fromDF[dof + d] != d) return false;
-    dof += parts[j]->NbDoF;
-    components += parts[j]->N;
-  }
-  return dof == t.NbDoF && components == t.N;
 }
 
 // The elements a script's space declared as a composite (fespace Rh(Th, [P13d, P13d, P1b3d])) is the sum
@@ -126,7 +106,7 @@ class SpaceBasis3 : public dlmfsi_ff::SpaceBasisOf<3, FESpace3> {
   static bool values_independent_of_element(const FESpace3& vh, const std::vector<const TypeOfFE3*>& parts) {
     const TypeOfFE3* t = vh.TFE[0];  // a FESpace3 has one element for all its tetrahedra
     if (parts.empty()) return barycentric_values3(t);
-    if (!t || !sum_of3(*t, parts)) return false;
+    if (!t || !dlmfsi_ff::sum_of(*t, parts)) return false;
     return std::all_of(parts.begin(), parts.end(), barycentric_values3);
   }
 

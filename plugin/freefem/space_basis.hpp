@@ -13,6 +13,29 @@
 
 namespace dlmfsi_ff {
 
+// The element a script calls name (FreeFEM's table of global names), or null; Element: TypeOfFE or TypeOfFE3.
+template <class Element>
+const Element* named_element(const char* name) {
+  const C_F0 c = Global.Find(name);
+  if (c.left() != atype<Element*>() || !c.LeftValue()) return nullptr;
+  return GetAny<Element*>((*c.LeftValue())(NullStack));
+}
+
+// Is t the sum of parts in this order (FreeFEM's composite element: each part's dofs after the previous
+// part's, dof d of part j as dof d of it, its components after the previous part's)?
+template <class Element>
+bool sum_of(const Element& t, const std::vector<const Element*>& parts) {
+  int dof = 0, components = 0;
+  for (std::size_t j = 0; j < parts.size(); ++j) {
+    if (!parts[j] || dof + parts[j]->NbDoF > t.NbDoF) return false;
+    for (int d = 0; d < parts[j]->NbDoF; ++d)
+      if (t.fromFE[dof + d] != static_cast<int>(j) || t.fromDF[dof + d] != d) return false;
+    dof += parts[j]->NbDoF;
+    components += parts[j]->N;
+  }
+  return dof == t.NbDoF && components == t.N;
+}
+
 // Space: FESpace or FESpace3.
 template <int D, class Space>
 class SpaceBasisOf : public dlmfsi::BasisOf<D> {
