@@ -326,3 +326,53 @@ TEST(Clip3d, SubnormalPerturbationOfASharedVertex) {
                           Point3{0.375, 0.625, -0.625}});
   check_all(a, b, "shared vertex moved by subnormals");
 }
+
+// TetNormals against TetFaces (formed independently, point by point): the same normals and permanents bit for
+// bit; unchanged by an exact translation of the tetrahedron (the search keeps them from the absolute corners and
+// clips translated ones); and clip_filtered given the normals of the untranslated b gives, on the translated
+// pair, the piece it forms itself, bit for bit.
+TEST(Clip3d, KeptNormalsAreTetFacesAndSurviveExactTranslations) {
+  std::mt19937_64 rng(20261206);
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto random_tet = [&](Point3 c, double h) {
+    Tet t;
+    for (Point3& p : t) p = c + h * Point3{u(rng), u(rng), u(rng)};
+    return positive(t);
+  };
+  // coordinates within 1.7 of the origin's 3, -3, 3 (binades [1, 8)): their differences from it are exact
+  const Point3 origin{3.0, -3.0, 3.0};
+  int translated = 0, met = 0;
+  for (int k = 0; k < 300; ++k) {
+    const Point3 c = origin + Point3{u(rng), u(rng), u(rng)};
+    const Tet a = random_tet(c, 0.3), b = random_tet(c + 0.2 * Point3{u(rng), u(rng), u(rng)}, 0.3);
+    TetFaces faces;
+    faces.set(b.data());
+    TetNormals normals;
+    normals.set(b.data());
+    for (int j = 0; j < 4; ++j) {
+      EXPECT_TRUE(normals.n(j) == faces.face[j].n && normals.pn(j) == faces.face[j].pn) << "pair " << k;
+      EXPECT_TRUE(faces.face[j].p == b[j == 0 ? 1 : 0]) << "pair " << k;
+    }
+    Tet la, lb;
+    if (!translate_exactly(a.data(), 4, origin, la.data()) || !translate_exactly(b.data(), 4, origin, lb.data()))
+      continue;
+    ++translated;
+    TetNormals local;
+    local.set(lb.data());
+    for (int j = 0; j < 4; ++j)
+      EXPECT_TRUE(local.n(j) == normals.n(j) && local.pn(j) == normals.pn(j)) << "pair " << k;
+    TetFaces a_faces;
+    a_faces.set(la.data());
+    unsigned beyond_kept = 0, beyond_own = 0;
+    const Piece3 kept = clip_filtered(la.data(), a_faces, lb.data(), normals, beyond_kept);
+    const Piece3 own = clip_filtered(la.data(), a_faces, lb.data(), beyond_own);
+    ASSERT_EQ(kept.n, own.n) << "pair " << k;
+    if (own.n == 0) continue;
+    ++met;
+    EXPECT_EQ(beyond_kept, beyond_own) << "pair " << k;
+    for (int i = 0; i < own.n; ++i)
+      EXPECT_TRUE(kept.v[i] == own.v[i] && kept.planes[i] == own.planes[i]) << "pair " << k << " vertex " << i;
+  }
+  EXPECT_GT(translated, 250);
+  EXPECT_GT(met, 50);
+}
