@@ -207,8 +207,10 @@ struct SolidCache : dlmfsi_ff::SolidCacheOf<FESpace, SpaceBasis, dlmfsi::SolidSi
   // The solid side's own fit when it is the one asked for; a fit of another component of the side's space
   // on the side's kept basis (its dofs tabulated, its values at the check point remembered from the side's
   // fit); else SolidCacheOf's.
-  const dlmfsi::PolynomialBasis* map_fit(const FESpace& vm, int comp, int degree) {
-    if (!(&vm == space && id == vm)) return SolidCacheOf::map_fit(vm, comp, degree);
+  // parts: vm's (space_parts), for a fit on another space.
+  const dlmfsi::PolynomialBasis* map_fit(const FESpace& vm, int comp, int degree,
+                                         const std::vector<const TypeOfFE*>& parts) {
+    if (!(&vm == space && id == vm)) return SolidCacheOf::map_fit(vm, comp, degree, parts);
     if (side->components() == std::vector<int>{comp} && side->degree() == degree) return &side->basis();
     for (auto it = fits.begin(); it != fits.end(); ++it)
       if (it->space == &vm && it->id == vm && it->comp == comp && it->degree == degree) {
@@ -364,8 +366,10 @@ const dlmfsi::CsrMatrix& DlmfsiOp::assemble(Stack stack, const dlmfsi::CouplingO
   cache.trim_fits();
   const SpaceBasis map_x_basis(sx), map_y_basis(sy);
   const int degree = dlmfsi::FieldMap::fit_degree(map_x_basis, px.second, map_y_basis, py.second);
-  const dlmfsi::PolynomialBasis* fit_x = degree > 0 ? cache.map_fit(sx, px.second, degree) : nullptr;
-  const dlmfsi::PolynomialBasis* fit_y = degree > 0 ? cache.map_fit(sy, py.second, degree) : nullptr;
+  const dlmfsi::PolynomialBasis* fit_x =
+      degree > 0 ? cache.map_fit(sx, px.second, degree, space_parts(*px.first->pVh, sx)) : nullptr;
+  const dlmfsi::PolynomialBasis* fit_y =
+      degree > 0 ? cache.map_fit(sy, py.second, degree, space_parts(*py.first->pVh, sy)) : nullptr;
   // The kept spaces read their dofs from a table (which threads may share).
   const dlmfsi::Basis* kept_x = cache.map_space(sx);
   const dlmfsi::Basis* kept_y = cache.map_space(sy);

@@ -280,7 +280,8 @@ const dlmfsi::CsrMatrix& Dlmfsi3Op::assemble(Stack stack, const dlmfsi::Coupling
   const int degree = dlmfsi::FieldMap3::fit_degree(spaces, comps);
   const dlmfsi::PolynomialBasis3* fits[3] = {nullptr, nullptr, nullptr};
   if (degree > 0)
-    for (int a = 0; a < 3; ++a) fits[a] = cache.map_fit(*sp[a], comps[a], degree);
+    for (int a = 0; a < 3; ++a)
+      fits[a] = cache.map_fit(*sp[a], comps[a], degree, space_parts3(*p[a].first->pVh, *sp[a]));
   // The kept spaces read their dofs from a table (which threads may share).
   int kept = 0;
   for (int a = 0; a < 3; ++a)

@@ -77,15 +77,17 @@ struct SolidCacheOf : SideCache<Space, Basis, Side> {
     if (fits.size() > kKeep) fits.erase(fits.begin(), fits.end() - kKeep);
   }
 
-  // The fit of component comp of the map's space vm (on the solid side's mesh) at the given degree. The most
-  // recently used fit is kept last (moving the entries leaves the fits themselves where they are).
-  const Fit* map_fit(const Space& vm, int comp, int degree) {
+  // The fit of component comp of the map's space vm (on the solid side's mesh) at the given degree; a new
+  // fit's Basis made from vm and basis_args (a composite's parts). The most recently used fit is kept last
+  // (moving the entries leaves the fits themselves where they are).
+  template <class... BasisArgs>
+  const Fit* map_fit(const Space& vm, int comp, int degree, const BasisArgs&... basis_args) {
     for (auto it = fits.begin(); it != fits.end(); ++it)
       if (it->space == &vm && it->id == vm && it->comp == comp && it->degree == degree) {
         std::rotate(it, it + 1, fits.end());
         return fits.back().fit.get();
       }
-    MapFit f{&vm, vm, comp, degree, std::make_unique<Basis>(vm), nullptr};
+    MapFit f{&vm, vm, comp, degree, std::make_unique<Basis>(vm, basis_args...), nullptr};
     f.basis->tabulate_dofs();
     f.fit = std::make_unique<Fit>(*f.basis, this->side->mesh(), degree, std::vector<int>{comp});
     fits.push_back(std::move(f));
