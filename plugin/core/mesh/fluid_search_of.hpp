@@ -107,8 +107,8 @@ class FluidSearchOf {
     return true;
   }
   // t ∩ k, k's corners given (as clipped): with what is kept of k when Elements keeps something.
-  PieceT clip(const PointT t[kCorners], const typename Elements::Faces& t_faces, int k, const PointT k_corners[kCorners],
-              unsigned& beyond) const {
+  PieceT clip(const PointT t[kCorners], const typename Elements::Faces& t_faces, int k,
+              const PointT k_corners[kCorners], unsigned& beyond) const {
     if constexpr (Planes::kept) return Elements::clip(t, t_faces, k_corners, planes(k), beyond);
     else return Elements::clip(t, t_faces, k_corners, beyond);
   }
