@@ -425,3 +425,34 @@ TEST(Coupling3d, BadInputIsAnError) {
       },
       Error);
 }
+
+// A sliver whose volume (1e-306) lies below the normal doubles' products in either mesh is an error that names
+// it; the mesh's other tetrahedra are of size 1 (scale.hpp's power-of-two scaling of a whole side does not help).
+TEST(Coupling3d, TetrahedraOutsideTheSupportedSizesAreNamed) {
+  // below the face (0, 0, 0), (1, 0, 0), (0, 1, 0) of the unit box, its fourth corner 1e-305 below that plane
+  auto with_sliver = [](Mesh3 m) {
+    const int n = static_cast<int>(m.vertices.size());
+    m.vertices.insert(m.vertices.end(), {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.25, 0.25, -1e-305}});
+    m.tetrahedra.push_back({n, n + 2, n + 1, n + 3});
+    m.build_adjacency();
+    return m;
+  };
+  const Mesh3 fluid = with_sliver(box_mesh(3, 3, 3, {0, 0, 0}, {1, 1, 1}));
+  const P1Tet f(fluid);
+  try {
+    const FluidSide3 side(fluid, f, {0});
+    ADD_FAILURE() << "no error for the fluid sliver";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("fluid tetrahedron " + std::to_string(fluid.size() - 1) + " is too small or too large"),
+              std::string::npos)
+        << message;
+  }
+  const Mesh3 box = box_mesh(3, 3, 3, {0, 0, 0}, {1, 1, 1});
+  const Mesh3 solid = with_sliver(box_mesh(2, 2, 2, {0, 0, 0}, {1, 1, 1}));
+  const AffineMap3 lifted(solid, kIdentity, {0, 0, 0.5});  // the sliver's image inside the fluid box
+  const std::string message = coupling_error(box, solid, lifted, true);
+  EXPECT_NE(message.find("solid tetrahedron " + std::to_string(solid.size() - 1) + " is too small or too large"),
+            std::string::npos)
+      << message;
+}

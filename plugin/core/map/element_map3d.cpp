@@ -104,7 +104,7 @@ void TetrahedronMap::fit(const Mesh3& solid_mesh, const SolidMap3& map, int kk) 
   if (orient3d(solid[0], solid[1], solid[2], solid[3]) <= 0)
     throw Error(name() + " is flat or negatively oriented in the solid mesh");
   const double det = dot(e1, cross(e2, e3));
-  check_tetrahedron_size(det, name(), "solid");
+  check_tetrahedron_size(det, k, "solid");
   inverse_of_columns(e1, e2, e3, inv_);
 
   degree_ = map.degree();

@@ -49,9 +49,16 @@ inline Point3 to_reference(const Point3 p[4], Point3 x) {
   return {dot(d, cross(e2, e3)) / det, dot(e1, cross(d, e3)) / det, dot(e1, cross(e2, d)) / det};
 }
 
-// Throws unless det = 6 |volume| of a tetrahedron lies within 2^-1000 .. 2^1000 (tetrahedra from about
-// 1e-100 to 1e100 in size, whose volumes h^3 and their products with gradients 1/h stay normal numbers).
-// who names the tetrahedron ("fluid tetrahedron 3"), side its mesh ("fluid").
+// Does det = 6 |volume| of a tetrahedron lie within 2^-1000 .. 2^1000 (tetrahedra from about 1e-100 to 1e100 in
+// size, whose volumes h^3 and their products with gradients 1/h stay normal numbers)?
+inline bool supported_tetrahedron_size(double det) { return det >= 0x1p-1000 && det <= 0x1p1000; }
+// Throws unless supported_tetrahedron_size(det); who names the tetrahedron ("fluid tetrahedron 3"), side its
+// mesh ("fluid").
 void check_tetrahedron_size(double det, const std::string& who, const char* side);
+// The same for tetrahedron k of the side's mesh, named "<side> tetrahedron k" (the name made only for the error).
+inline void check_tetrahedron_size(double det, int k, const char* side) {
+  if (!supported_tetrahedron_size(det))
+    check_tetrahedron_size(det, std::string(side) + " tetrahedron " + std::to_string(k), side);
+}
 
 }  // namespace dlmfsi

@@ -22,7 +22,7 @@ const Mesh3& checked(const Mesh3& mesh) {
     mesh.corners(k, p);
     const double det = std::fabs(volume6(p[0], p[1], p[2], p[3]));
     if (orient3d(p[0], p[1], p[2], p[3]) == 0) throw Error("fluid tetrahedron " + std::to_string(k) + " is flat");
-    check_tetrahedron_size(det, "fluid tetrahedron " + std::to_string(k), "fluid");
+    check_tetrahedron_size(det, k, "fluid");
   }
   return mesh;
 }
