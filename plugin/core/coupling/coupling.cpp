@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "buffer_room.hpp"
+#include "coupling/element_shares.hpp"
 #include "fe/component_pairs.hpp"
 #include "errors.hpp"
 #include "integration/choose_integrator.hpp"
@@ -99,35 +100,6 @@ class Assembler {
   LocalBlock block_;
   std::unique_ptr<TriangleIntegrator> integrator_;
 };
-
-// The solid triangles of share [first, last) of the indices, in the solid side's order (the order itself
-// for the whole; otherwise written into out).
-const std::vector<int>& share_in_order(const SolidSide& solid, int first, int last, std::vector<int>& out) {
-  if (first == 0 && last == solid.mesh().size()) return solid.order();
-  out.clear();
-  for (int k : solid.order())
-    if (k >= first && k < last) out.push_back(k);
-  return out;
-}
-
-// The rows that the solid elements of more than one thread's share meet (run_shares' split of elements),
-// marked in later (one per row); owner: scratch.
-void mark_later_rows(const SolidSide& solid, const std::vector<int>& elements, int threads, std::vector<char>& later,
-                     std::vector<int>& owner) {
-  const int rows = solid.space().dof_count(), dofs = solid.space().local_dofs();
-  later.assign(rows, 0);
-  owner.assign(rows, -1);
-  const long long count = static_cast<long long>(elements.size());
-  for (int t = 0; t < threads; ++t)
-    for (long long e = share_first(count, t, threads); e < share_first(count, t + 1, threads); ++e) {
-      const int* d = solid.rows(elements[e]);
-      for (int i = 0; i < dofs; ++i) {
-        int& o = owner[d[i]];
-        if (o < 0) o = t;
-        else if (o != t) later[d[i]] = 1;
-      }
-    }
-}
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -221,7 +193,8 @@ const CsrMatrix& CouplingAssembly::assemble_checked(const FluidSide& fluid, cons
   const int requested = std::max(1, std::min(opt.threads, 64));
   const int threads = parallel ? requested : 1;
   while (static_cast<int>(threads_.size()) < threads) threads_.push_back(std::make_unique<Thread>());
-  const int rows = solid.space().dof_count();
+  const int rows = solid.space().dof_count(), nd = solid.space().local_dofs();
+  auto solid_rows = [&solid](int k) { return solid.rows(k); };
   // The map into the fluid side's scaled coordinates.
   const ScaledMap scaled_map(map, fluid.scale());
   const SolidMap& fluid_map = fluid.scale() == 0 ? map : scaled_map;
@@ -239,7 +212,7 @@ const CsrMatrix& CouplingAssembly::assemble_checked(const FluidSide& fluid, cons
       in_place->later_rows().clear();
       later_for_[0] = 0;
     } else if (!std::equal(later_for, later_for + 4, later_for_)) {  // a time loop marks them once
-      mark_later_rows(solid, elements, threads, in_place->later_rows(), owner_);
+      mark_later_rows(rows, nd, elements, threads, solid_rows, in_place->later_rows(), owner_);
       std::copy(later_for, later_for + 4, later_for_);
     }
     if (misses_.size() < static_cast<size_t>(threads) + 1) misses_.resize(threads + 1);
@@ -249,7 +222,7 @@ const CsrMatrix& CouplingAssembly::assemble_checked(const FluidSide& fluid, cons
     if (threads == 1)
       row_sum->later_rows().clear();
     else
-      mark_later_rows(solid, elements, threads, row_sum->later_rows(), owner_);
+      mark_later_rows(rows, nd, elements, threads, solid_rows, row_sum->later_rows(), owner_);
   }
   if (later_.size() < static_cast<size_t>(threads)) later_.resize(threads);
   total.setup_seconds = seconds_since(start);

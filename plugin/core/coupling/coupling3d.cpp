@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "coupling/element_shares.hpp"
 #include "fe/component_pairs.hpp"
 #include "errors.hpp"
 #include "integration/choose_integrator3d.hpp"
@@ -114,37 +115,6 @@ void check_options(const Basis3& fluid_space, const Basis3& multiplier, const Co
                 "] needs 0 <= rank < size");
 }
 
-// The solid tetrahedra of share [first, last) of the indices, in the solid side's order (the order itself
-// for the whole; otherwise written into out).
-const std::vector<int>& share_in_order(const SolidSide3& solid, int first, int last, std::vector<int>& out) {
-  if (first == 0 && last == solid.mesh().size()) return solid.order();
-  out.clear();
-  for (int k : solid.order())
-    if (k >= first && k < last) out.push_back(k);
-  return out;
-}
-
-// The rows (multiplier dofs) that the solid tetrahedra of more than one thread's share meet (run_shares'
-// split of elements), marked in later (one per row); owner, dofs: scratch.
-void mark_later_rows(const SolidSide3& solid, const std::vector<int>& elements, int threads, std::vector<char>& later,
-                     std::vector<int>& owner) {
-  const Basis3& space = solid.space();
-  const int rows = space.dof_count(), nd = space.local_dofs();
-  later.assign(rows, 0);
-  owner.assign(rows, -1);
-  std::vector<int> dofs(nd);
-  const long long count = static_cast<long long>(elements.size());
-  for (int t = 0; t < threads; ++t)
-    for (long long e = share_first(count, t, threads); e < share_first(count, t + 1, threads); ++e) {
-      space.dofs(elements[e], dofs.data());
-      for (int d : dofs) {
-        int& o = owner[d];
-        if (o < 0) o = t;
-        else if (o != t) later[d] = 1;
-      }
-    }
-}
-
 }  // namespace
 
 // A thread's memory kept across calls: its search (kept_search.hpp).
@@ -192,7 +162,12 @@ const CsrMatrix& CouplingAssembly3::assemble(const FluidSide3& fluid, const Soli
   // off its pattern as triplets; without a last matrix, or with threads, the blocks are summed into their rows
   // as they come (RowSum), the rows that several threads meet after them, in order: either way compress's
   // sums of the blocks' entries in element order, bit for bit.
-  const int rows = solid.space().dof_count(), cols = fluid.space().dof_count();
+  const int rows = solid.space().dof_count(), cols = fluid.space().dof_count(), nd = solid.space().local_dofs();
+  std::vector<int> dofs(nd);
+  auto solid_dofs = [&](int k) {
+    solid.space().dofs(k, dofs.data());
+    return dofs.data();
+  };
   const std::vector<int>& elements = share_in_order(solid, first, last, share_);
   InPlaceSum* const in_place = threads == 1 ? matrix_.sum_on_last_pattern(rows, cols) : nullptr;
   if (in_place) {
@@ -204,7 +179,7 @@ const CsrMatrix& CouplingAssembly3::assemble(const FluidSide3& fluid, const Soli
     if (threads == 1)
       row_sum->later_rows().clear();
     else
-      mark_later_rows(solid, elements, threads, row_sum->later_rows(), owner_);
+      mark_later_rows(rows, nd, elements, threads, solid_dofs, row_sum->later_rows(), owner_);
   }
   if (later_.size() < static_cast<size_t>(threads)) later_.resize(threads);
   total.setup_seconds = since();
