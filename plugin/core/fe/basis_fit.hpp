@@ -45,9 +45,6 @@ class BasisFit {
  private:
   void fit(int k, double* coefficients);
   void check(int k, const double* v);  // v: the monomials at the check point
-  // Are the listed functions' values in sample (Basis::values' layout) element 0's at the check point, bit
-  // for bit (and does element 0 pass the check)?
-  bool same_as_first(const double* sample) const;
   void derive(const std::vector<double>& coefficients, std::vector<double>& derivative) const;
   const Basis& basis_;
   int degree_, nm_;

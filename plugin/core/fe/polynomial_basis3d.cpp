@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 #include "fe/polynomial_fit.hpp"
 #include "fe/points_evaluation3d.hpp"
@@ -61,18 +60,13 @@ void PolynomialBasis3::fit(int k, double* c) {
 void PolynomialBasis3::check(int k, const double* v) {
   // One evaluation decides whether element k shares the reference fit.
   basis_.values(k, kCheckPoint, sample_.data());
-  if (same_as_first(sample_.data()) || fit_matches<3>(reference_.data(), nm_, v, functions_, sample_.data())) return;
+  // element 0's values bit for bit: its check's outcome (passed), without the fit's sums
+  if (same_values<3>(sample_.data(), functions_, first_values_) ||
+      fit_matches<3>(reference_.data(), nm_, v, functions_, sample_.data()))
+    return;
   slot_[k] = static_cast<int>(own_.size());
   own_.resize(own_.size() + functions_.size() * nm_);
   fit(k, &own_[slot_[k]]);
-}
-
-bool PolynomialBasis3::same_as_first(const double* sample) const {
-  if (first_values_.empty()) return false;
-  for (size_t f = 0; f < functions_.size(); ++f)
-    if (std::memcmp(&sample[static_cast<size_t>(functions_[f]) * Basis3::kSlots], &first_values_[f], sizeof(double)) != 0)
-      return false;
-  return true;
 }
 
 void PolynomialBasis3::evaluate_points(int k, const Point3* xi, int n, double* value, double* gradient) const {

@@ -78,9 +78,6 @@ class PolynomialBasis3 {
  private:
   void fit(int k, double* coefficients);
   void check(int k, const double* v);  // v: the monomials at the check point
-  // Are the listed functions' values in sample (Basis3::values' layout) element 0's at the check point, bit
-  // for bit (and does element 0 pass the check)?
-  bool same_as_first(const double* sample) const;
   const Basis3& basis_;
   AffineElementMaps3 frames_;
   int degree_, nm_ = 0, nc_;

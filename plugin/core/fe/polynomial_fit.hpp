@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <initializer_list>
 #include <vector>
 
@@ -108,6 +109,18 @@ bool fit_matches(const double* coefficients, int nm, const double* v, const std:
     }
     if (std::fabs(s - sample[functions[f] * BasisOf<D>::kSlots]) > 1e-12 * (scale + 1)) return false;
   }
+  return true;
+}
+
+// Are the listed functions' values in sample (BasisOf<D>::values' layout) first (one per function) bit for bit?
+// False when first is empty (nothing kept to compare with).
+template <int D>
+bool same_values(const double* sample, const std::vector<int>& functions, const std::vector<double>& first) {
+  if (first.empty()) return false;
+  for (std::size_t f = 0; f < functions.size(); ++f)
+    if (std::memcmp(&sample[static_cast<std::size_t>(functions[f]) * BasisOf<D>::kSlots], &first[f],
+                    sizeof(double)) != 0)
+      return false;
   return true;
 }
 
