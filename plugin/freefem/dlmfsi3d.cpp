@@ -115,38 +115,12 @@ class SpaceBasis3 : public dlmfsi_ff::SpaceBasisOf<3, FESpace3> {
   mutable std::vector<double> kept_values_;  // element 0's values at kept_xi_ (Basis3::values' layout), or empty
 };
 
-// The fluid side of the last call; parts: as SpaceBasis3's.
-struct FluidCache3 : dlmfsi_ff::SideCache<FESpace3, SpaceBasis3, dlmfsi::FluidSide3> {
-  const dlmfsi::FluidSide3& get(const FESpace3& vh, const std::vector<int>& comps,
-                                const std::vector<const TypeOfFE3*>& parts) {
-    if (holds(vh, comps)) return *side;
-    side.reset();
-    basis.reset(new SpaceBasis3(vh, parts));
-    side.reset(new dlmfsi::FluidSide3(dlmfsi_ff::convert(vh.Th), *basis, comps));
-    space = &vh;
-    id = vh;
-    components = comps;
-    return *side;
-  }
-};
+// The fluid side of the last call (get's last argument: the space's parts, as SpaceBasis3's).
+using FluidCache3 = dlmfsi_ff::SideCache<FESpace3, SpaceBasis3, dlmfsi::FluidSide3>;
 
 // The solid side (solid mesh, multiplier fit) and the fits of the map's spaces of the last calls (the three
-// most recently used); parts: as SpaceBasis3's.
-struct SolidCache3 : dlmfsi_ff::SolidCacheOf<FESpace3, SpaceBasis3, dlmfsi::SolidSide3, dlmfsi::PolynomialBasis3, 3> {
-  const dlmfsi::SolidSide3& get(const FESpace3& vs, const std::vector<int>& comps,
-                                const std::vector<const TypeOfFE3*>& parts) {
-    if (holds(vs, comps)) return *side;
-    fits.clear();
-    side.reset();
-    basis.reset(new SpaceBasis3(vs, parts));
-    basis->tabulate_dofs();  // before the side, which reads every element's dofs too
-    side.reset(new dlmfsi::SolidSide3(dlmfsi_ff::convert(vs.Th), *basis, comps));
-    space = &vs;
-    id = vs;
-    components = comps;
-    return *side;
-  }
-};
+// most recently used); get's and map_fit's last argument: the space's parts.
+using SolidCache3 = dlmfsi_ff::SolidCacheOf<FESpace3, SpaceBasis3, dlmfsi::SolidSide3, dlmfsi::PolynomialBasis3, 3>;
 
 FluidCache3& fluid_cache() {
   static FluidCache3* cache = new FluidCache3;  // never destroyed: FreeFEM tears its spaces down first

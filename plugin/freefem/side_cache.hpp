@@ -27,17 +27,23 @@ struct SideCache {
   bool holds(const Space& vh, const std::vector<int>& comps) const {
     return side && space == &vh && id == vh && components == comps;
   }
-  // Builds the side of the components comps of vh in place of the cached one.
-  const Side& make(const Space& vh, const std::vector<int>& comps) {
+  // Builds the side of the components comps of vh in place of the cached one, on a Basis made from vh and
+  // basis_args (a composite's parts); with tabulate, the basis's dofs tabulated before the side reads them.
+  template <class... BasisArgs>
+  const Side& make(const Space& vh, const std::vector<int>& comps, bool tabulate, const BasisArgs&... basis_args) {
     side.reset();
-    basis.reset(new Basis(vh));
+    basis.reset(new Basis(vh, basis_args...));
+    if (tabulate) basis->tabulate_dofs();
     side.reset(new Side(convert(vh.Th), *basis, comps));
     space = &vh;
     id = vh;
     components = comps;
     return *side;
   }
-  const Side& get(const Space& vh, const std::vector<int>& comps) { return holds(vh, comps) ? *side : make(vh, comps); }
+  template <class... BasisArgs>
+  const Side& get(const Space& vh, const std::vector<int>& comps, const BasisArgs&... basis_args) {
+    return holds(vh, comps) ? *side : make(vh, comps, false, basis_args...);
+  }
 };
 
 // The solid side and the fits (Fit: the core's PolynomialBasis) of the map's spaces of the last calls: in a
@@ -54,12 +60,13 @@ struct SolidCacheOf : SideCache<Space, Basis, Side> {
   };
   std::vector<MapFit> fits;
 
-  const Side& get(const Space& vs, const std::vector<int>& comps) {
+  // The side; a new one on a Basis made from vs and basis_args, its dofs tabulated (the side reads them, the
+  // map's fits on the same space too).
+  template <class... BasisArgs>
+  const Side& get(const Space& vs, const std::vector<int>& comps, const BasisArgs&... basis_args) {
     if (this->holds(vs, comps)) return *this->side;
     fits.clear();
-    const Side& made = this->make(vs, comps);
-    this->basis->tabulate_dofs();
-    return made;
+    return this->make(vs, comps, true, basis_args...);
   }
 
   // The kept Basis of the map's space vm, its dofs tabulated (the solid side's space, or that of a fit), or
