@@ -71,8 +71,8 @@ Moments moments(const Piece3& piece) {
   if (size > 0 && std::isfinite(size)) e = frexp_exponent(size);
   out.scale = power_of_two(e);
   const double shrink = power_of_two(-e);
-  // The sums in local variables (registers) rather than arrays a lambda updates through memory: each
-  // tetrahedron's terms as before, in the same order (the same sums bit for bit).
+  // Over the tetrahedra (apex, a, b, c) of the pulling triangulation from the apex: volume v, int y = v s / 4
+  // and int y y^T = v / 20 (a a^T + b b^T + c c^T + s s^T), s = a + b + c (the shrunk points), upper triangle.
   double volume = 0, f0 = 0, f1 = 0, f2 = 0, m00 = 0, m01 = 0, m02 = 0, m11 = 0, m12 = 0, m22 = 0;
   for (int k = 0; k < piece.faces; ++k) {  // Piece3::for_each_tetrahedron_from(apex), written out
     if (piece.face_vertices[k] >> apex & 1u) continue;
