@@ -417,7 +417,8 @@ int main(int argc, char** argv) {
       const test::P1 vf(fluid), vs(solid);
       const FluidSide fluid_side(fluid, vf, opt.fluid_components);
       const SolidSide solid_side(solid, vs, opt.solid_components);
-      const PolynomialBasis map_fit(vs, solid, 1, {0});
+      // the map on the multiplier's space and component: the solid side's own fit, as the adapter hands it
+      const PolynomialBasis& map_fit = solid_side.basis();
       const FieldMap map(solid, vs, mx.data(), 0, vs, my.data(), 0, &map_fit, &map_fit);
       CouplingAssembly assembly;
       CouplingReport report;
