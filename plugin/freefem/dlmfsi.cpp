@@ -366,10 +366,10 @@ const dlmfsi::CsrMatrix& DlmfsiOp::assemble(Stack stack, const dlmfsi::CouplingO
   cache.trim_fits();
   const SpaceBasis map_x_basis(sx), map_y_basis(sy);
   const int degree = dlmfsi::FieldMap::fit_degree(map_x_basis, px.second, map_y_basis, py.second);
-  const dlmfsi::PolynomialBasis* fit_x =
-      degree > 0 ? cache.map_fit(sx, px.second, degree, space_parts(*px.first->pVh, sx)) : nullptr;
-  const dlmfsi::PolynomialBasis* fit_y =
-      degree > 0 ? cache.map_fit(sy, py.second, degree, space_parts(*py.first->pVh, sy)) : nullptr;
+  const std::vector<const TypeOfFE*> parts_x = space_parts(dlmfsi_ff::declared_space(*px.first), sx),
+                                     parts_y = space_parts(dlmfsi_ff::declared_space(*py.first), sy);
+  const dlmfsi::PolynomialBasis* fit_x = degree > 0 ? cache.map_fit(sx, px.second, degree, parts_x) : nullptr;
+  const dlmfsi::PolynomialBasis* fit_y = degree > 0 ? cache.map_fit(sy, py.second, degree, parts_y) : nullptr;
   // The kept spaces read their dofs from a table (which threads may share).
   const dlmfsi::Basis* kept_x = cache.map_space(sx);
   const dlmfsi::Basis* kept_y = cache.map_space(sy);

@@ -255,7 +255,7 @@ const dlmfsi::CsrMatrix& Dlmfsi3Op::assemble(Stack stack, const dlmfsi::Coupling
   const dlmfsi::PolynomialBasis3* fits[3] = {nullptr, nullptr, nullptr};
   if (degree > 0)
     for (int a = 0; a < 3; ++a)
-      fits[a] = cache.map_fit(*sp[a], comps[a], degree, space_parts3(*p[a].first->pVh, *sp[a]));
+      fits[a] = cache.map_fit(*sp[a], comps[a], degree, space_parts3(dlmfsi_ff::declared_space(*p[a].first), *sp[a]));
   // The kept spaces read their dofs from a table (which threads may share).
   int kept = 0;
   for (int a = 0; a < 3; ++a)

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -34,6 +35,13 @@ bool sum_of(const Element& t, const std::vector<const Element*>& parts) {
     components += parts[j]->N;
   }
   return dof == t.NbDoF && components == t.N;
+}
+
+// The space a script declared a finite element function in (FEbase: FEbase<double, v_fes> or <double, v_fes3>),
+// or null when it has none.
+template <class FEbase>
+auto declared_space(const FEbase& f) -> typename std::remove_reference<decltype(**f.pVh)>::type* {
+  return f.pVh ? *f.pVh : nullptr;
 }
 
 // Space: FESpace or FESpace3.
