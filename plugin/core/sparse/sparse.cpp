@@ -10,12 +10,13 @@ namespace dlmfsi {
 const CsrMatrix& CsrBuilder::build(int rows, int cols, const std::vector<std::vector<Triplet>>& parts, int threads) {
   const int n = std::max(1, std::min(threads, rows));
   // n == 1: the one range holds every row
-  if (n == 1) return build_ranges<true>(rows, cols, 1, parts.size(), [&](int) { return parts.data(); });
-  return build_ranges<false>(rows, cols, n, parts.size(), [&](int) { return parts.data(); });
+  if (n == 1) return build_ranges<true>(rows, cols, 1, parts.data(), parts.size());
+  return build_ranges<false>(rows, cols, n, parts.data(), parts.size());
 }
 
-template <bool AllInRange, class PartsOf>
-const CsrMatrix& CsrBuilder::build_ranges(int rows, int cols, int n, std::size_t count, PartsOf from_range) {
+template <bool AllInRange>
+const CsrMatrix& CsrBuilder::build_ranges(int rows, int cols, int n, const std::vector<Triplet>* parts,
+                                          std::size_t count) {
   const RowRanges split{rows, n};
   while (static_cast<int>(ranges_.size()) < n) ranges_.push_back(std::make_unique<CompressedRows>());
   for (int t = 0; t < n; ++t) {
@@ -28,14 +29,14 @@ const CsrMatrix& CsrBuilder::build_ranges(int rows, int cols, int n, std::size_t
     in_place_sum_.start(m);
     range_kept_.resize(n);
     on_threads(n, [&](int t) {
-      range_kept_[t] = in_place_sum_.sum_rows(ranges_[t]->first, ranges_[t]->last, from_range(t), count);
+      range_kept_[t] = in_place_sum_.sum_rows(ranges_[t]->first, ranges_[t]->last, parts, count);
     });
     for (int t = 0; t < n; ++t) kept_pattern_ = kept_pattern_ && range_kept_[t];
     if (kept_pattern_) return m;
   }
   // No pattern to keep until the rows are all in place (an error on the way leaves none).
   m.start.clear();
-  on_threads(n, [&](int t) { ranges_[t]->compress<AllInRange>(cols, from_range(t), count); });
+  on_threads(n, [&](int t) { ranges_[t]->compress<AllInRange>(cols, parts, count); });
   m.rows = rows;
   m.cols = cols;
   m.start.resize(rows + 1);

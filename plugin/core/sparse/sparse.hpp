@@ -51,9 +51,10 @@ class CsrBuilder {
   CsrMatrix release() { return std::exchange(matrix_, CsrMatrix{}); }
 
  private:
-  // Range t of n reads the count lists from_range(t) (AllInRange: only triplets of its rows).
-  template <bool AllInRange, class PartsOf>
-  const CsrMatrix& build_ranges(int rows, int cols, int n, std::size_t count, PartsOf from_range);
+  // Each of the n row ranges reads the count lists parts, keeping the triplets of its rows (AllInRange: every
+  // triplet is of its rows, n == 1).
+  template <bool AllInRange>
+  const CsrMatrix& build_ranges(int rows, int cols, int n, const std::vector<Triplet>* parts, std::size_t count);
   void merge_rows(const CompressedRows& r, std::size_t at);
 
   CsrMatrix matrix_;
