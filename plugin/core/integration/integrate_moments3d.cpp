@@ -74,27 +74,22 @@ Moments moments(const Piece3& piece) {
   // Over the tetrahedra (apex, a, b, c) of the pulling triangulation from the apex: volume v, int y = v s / 4
   // and int y y^T = v / 20 (a a^T + b b^T + c c^T + s s^T), s = a + b + c (the shrunk points), upper triangle.
   double volume = 0, f0 = 0, f1 = 0, f2 = 0, m00 = 0, m01 = 0, m02 = 0, m11 = 0, m12 = 0, m22 = 0;
-  for (int k = 0; k < piece.faces; ++k) {  // Piece3::for_each_tetrahedron_from(apex), written out
-    if (piece.face_vertices[k] >> apex & 1u) continue;
-    const int start = piece.face_start[k], end = piece.face_start[k + 1];
-    const Point3 a = piece.v[piece.face_index[start]] - o, as = shrink * a;
-    for (int i = start + 1; i + 1 < end; ++i) {
-      const Point3 b = piece.v[piece.face_index[i]] - o, c = piece.v[piece.face_index[i + 1]] - o;
-      const double v = std::fabs(dot(a, cross(b, c))) / 6;
-      volume += v;
-      const Point3 bs = shrink * b, cs = shrink * c, t = as + bs + cs;
-      f0 += v * t.x / 4;
-      f1 += v * t.y / 4;
-      f2 += v * t.z / 4;
-      const double w = v / 20;
-      m00 += w * (as.x * as.x + bs.x * bs.x + cs.x * cs.x + t.x * t.x);
-      m01 += w * (as.x * as.y + bs.x * bs.y + cs.x * cs.y + t.x * t.y);
-      m02 += w * (as.x * as.z + bs.x * bs.z + cs.x * cs.z + t.x * t.z);
-      m11 += w * (as.y * as.y + bs.y * bs.y + cs.y * cs.y + t.y * t.y);
-      m12 += w * (as.y * as.z + bs.y * bs.z + cs.y * cs.z + t.y * t.z);
-      m22 += w * (as.z * as.z + bs.z * bs.z + cs.z * cs.z + t.z * t.z);
-    }
-  }
+  piece.for_each_tetrahedron_from(apex, [&](int, int ip, int iq, int ir) {
+    const Point3 a = piece.v[ip] - o, b = piece.v[iq] - o, c = piece.v[ir] - o;
+    const double v = std::fabs(dot(a, cross(b, c))) / 6;
+    volume += v;
+    const Point3 as = shrink * a, bs = shrink * b, cs = shrink * c, t = as + bs + cs;
+    f0 += v * t.x / 4;
+    f1 += v * t.y / 4;
+    f2 += v * t.z / 4;
+    const double w = v / 20;
+    m00 += w * (as.x * as.x + bs.x * bs.x + cs.x * cs.x + t.x * t.x);
+    m01 += w * (as.x * as.y + bs.x * bs.y + cs.x * cs.y + t.x * t.y);
+    m02 += w * (as.x * as.z + bs.x * bs.z + cs.x * cs.z + t.x * t.z);
+    m11 += w * (as.y * as.y + bs.y * bs.y + cs.y * cs.y + t.y * t.y);
+    m12 += w * (as.y * as.z + bs.y * bs.z + cs.y * cs.z + t.y * t.z);
+    m22 += w * (as.z * as.z + bs.z * bs.z + cs.z * cs.z + t.z * t.z);
+  });
   out.volume = volume;
   const double first[3] = {f0, f1, f2};
   const double second[3][3] = {{m00, m01, m02}, {m01, m11, m12}, {m02, m12, m22}};
@@ -192,7 +187,7 @@ double MomentIntegrator3::integrate(const ClippedImage3& image, int kf, const Pi
       if (gradients) {
         for (int b = 0; b < ns; ++b) {
           const int g = solid[b];
-          const double sum = va * sv[g] + m0 * sy[3 * g] + m1 * sy[3 * g + 1] + m2 * sy[3 * g + 2];
+          const double sum = va * s0[b] + m0 * s1[b] + m1 * s2[b] + m2 * s3[b];
           col[b] += sum + (fc[3 * f] * sg[3 * g] + fc[3 * f + 1] * sg[3 * g + 1] + fc[3 * f + 2] * sg[3 * g + 2]);
         }
       } else {
