@@ -1,6 +1,5 @@
 #include "fe/basis_fit.hpp"
 
-
 #include "fe/polynomial_fit.hpp"
 
 namespace dlmfsi {

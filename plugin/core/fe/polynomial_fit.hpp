@@ -166,13 +166,6 @@ inline bool partition_of_unity(const double* c, int n, int nm) {
   return true;
 }
 
-// A field's polynomials on the elements [first, last): out[k * stride + offset + m] = the coefficient of
-// monomial m, on element k, of the sum over the fitted functions f of values[global dof of f] * (function
-// f) (Fit: PolynomialBasis or PolynomialBasis3 of nm monomials, fitted on space), summed from zero in the
-// functions' order. Where the functions add up to 1 the sum is taken relative to the first function's value
-// v0, sum_f (v_f - v0) f + v0 (the non-constant coefficients without the v0 sum_f c_f = 0 they would carry):
-// a map of an element of size h at distance R from 0 then has non-constant coefficients to relative
-// precision eps instead of eps R / h (v_f - v0 is exact for values within a factor 2 of each other).
 // One element's sum for field_monomials (NM > 0: the monomial count fixed at compile time, else nm).
 template <int NM>
 inline void field_element(const double* values, const int* dofs, const std::vector<int>& local_dof, const double* c,
@@ -198,6 +191,13 @@ inline void field_element(const double* values, const int* dofs, const std::vect
   }
 }
 
+// A field's polynomials on the elements [first, last): out[k * stride + offset + m] = the coefficient of
+// monomial m, on element k, of the sum over the fitted functions f of values[global dof of f] * (function
+// f) (Fit: PolynomialBasis or PolynomialBasis3 of nm monomials, fitted on space), summed from zero in the
+// functions' order. Where the functions add up to 1 the sum is taken relative to the first function's value
+// v0, sum_f (v_f - v0) f + v0 (the non-constant coefficients without the v0 sum_f c_f = 0 they would carry):
+// a map of an element of size h at distance R from 0 then has non-constant coefficients to relative
+// precision eps instead of eps R / h (v_f - v0 is exact for values within a factor 2 of each other).
 template <int D, class Fit>
 void field_monomials(const BasisOf<D>& space, const double* values, const Fit& fit, int nm, int first, int last,
                      double* out, std::size_t offset, std::size_t stride) {
