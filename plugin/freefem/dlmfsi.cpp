@@ -122,9 +122,7 @@ class SpaceBasis : public dlmfsi_ff::SpaceBasisOf<2, FESpace> {
     const TypeOfFE* t = vh.TFE[0];
     for (int k = 1; k < vh.Th.nt; ++k)
       if (vh.TFE[k] != t) return false;
-    if (parts.empty()) return barycentric_values(t);
-    if (!dlmfsi_ff::sum_of(*t, parts)) return false;
-    return std::all_of(parts.begin(), parts.end(), barycentric_values);
+    return dlmfsi_ff::values_same_everywhere(t, parts, barycentric_values);
   }
 
   const bool same_everywhere_;

@@ -104,10 +104,8 @@ class SpaceBasis3 : public dlmfsi_ff::SpaceBasisOf<3, FESpace3> {
   }
 
   static bool values_independent_of_element(const FESpace3& vh, const std::vector<const TypeOfFE3*>& parts) {
-    const TypeOfFE3* t = vh.TFE[0];  // a FESpace3 has one element for all its tetrahedra
-    if (parts.empty()) return barycentric_values3(t);
-    if (!t || !dlmfsi_ff::sum_of(*t, parts)) return false;
-    return std::all_of(parts.begin(), parts.end(), barycentric_values3);
+    // a FESpace3 has one element for all its tetrahedra
+    return dlmfsi_ff::values_same_everywhere(vh.TFE[0], parts, barycentric_values3);
   }
 
   const bool same_everywhere_;

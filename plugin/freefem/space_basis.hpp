@@ -37,6 +37,15 @@ bool sum_of(const Element& t, const std::vector<const Element*>& parts) {
   return dof == t.NbDoF && components == t.N;
 }
 
+// Are the basis values at a reference point the same on every element of a space whose element is t: t one
+// element that barycentric(t) says is so, or, parts given, the sum of such parts?
+template <class Element, class Barycentric>
+bool values_same_everywhere(const Element* t, const std::vector<const Element*>& parts, Barycentric barycentric) {
+  if (parts.empty()) return barycentric(t);
+  if (!t || !sum_of(*t, parts)) return false;
+  return std::all_of(parts.begin(), parts.end(), barycentric);
+}
+
 // The space a script declared a finite element function in (FEbase: FEbase<double, v_fes> or <double, v_fes3>),
 // or null when it has none.
 template <class FEbase>
