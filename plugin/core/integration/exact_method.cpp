@@ -71,10 +71,9 @@ double ExactMethod::clip(const ClippedImage& image, const Point img[3], LocalBlo
   PieceIntegrator& integrator = image.triangle.affine && affine_ ? *affine_ : *general_;
   double covered = 0;
   auto add_piece = [&](const ClippedImage& in, int kf, const Piece& piece) {
-    covered += piece.area();
     ++counts_.pieces;
     block.enter_fluid_element(fluid_.dofs(kf));
-    integrator.integrate(in, kf, piece, block);
+    covered += integrator.integrate(in, kf, piece, block);
   };
   // The image's area: area2 of the exactly translated corners equals area2 of img bit for bit.
   const double area = 0.5 * area2(img[0], img[1], img[2]);

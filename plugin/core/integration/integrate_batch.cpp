@@ -87,8 +87,9 @@ BatchIntegrator::BatchIntegrator(const Integrand& integrand, CouplingReport& cou
   fluid_gradient_terms_ = monomial_count(integrand.fluid.degree() - 1);
 }
 
-void BatchIntegrator::integrate(const ClippedImage& image, int kf, const Piece& piece, LocalBlock& block) {
+double BatchIntegrator::integrate(const ClippedImage& image, int kf, const Piece& piece, LocalBlock& block) {
   add_gathered(image.triangle, kf, gather(image, kf, piece), block);
+  return piece.area();
 }
 
 void BatchIntegrator::integrate_points(const MappedTriangle& mt, int kf, size_t n, const Point* y, Point origin,

@@ -25,7 +25,7 @@ namespace dlmfsi {
 class BatchIntegrator : public PieceIntegrator {
  public:
   BatchIntegrator(const Integrand& integrand, CouplingReport& counts);
-  void integrate(const ClippedImage& image, int kf, const Piece& piece, LocalBlock& block) override;
+  double integrate(const ClippedImage& image, int kf, const Piece& piece, LocalBlock& block) override;
   // The same sums over n given points of the (not affine) solid triangle mt in fluid element kf (entered in
   // the block): y the points relative to origin (y - origin, kf's corners translated by -origin as the
   // caller's geometry did), xi their reference points in mt, weight their weights (ds), jacobian dX/ds there

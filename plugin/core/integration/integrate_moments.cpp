@@ -81,11 +81,11 @@ MomentIntegrator::MomentIntegrator(const Integrand& integrand, CouplingReport& c
     add_ = &MomentIntegrator::add<0, 0>;
 }
 
-void MomentIntegrator::integrate(const ClippedImage& image, int kf, const Piece& piece, LocalBlock& block) {
-  const Moments moments(piece);
+double MomentIntegrator::integrate(const ClippedImage& image, int kf, const Piece& piece, LocalBlock& block) {
+  const Moments moments(piece);  // its area is piece.area(): the same fan, the same products and sums
   counts_.points += 1;
-  if (!(moments.area > 0)) return;  // a piece of round-off size: nothing to add
-  (this->*add_)(image, kf, moments, block);
+  if (moments.area > 0) (this->*add_)(image, kf, moments, block);  // else a piece of round-off size
+  return moments.area;
 }
 
 template <int FW, int SW>

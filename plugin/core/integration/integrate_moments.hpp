@@ -19,7 +19,7 @@ class MomentIntegrator : public PieceIntegrator {
   static bool applies(const Integrand& integrand);
 
   MomentIntegrator(const Integrand& integrand, CouplingReport& counts);
-  void integrate(const ClippedImage& image, int kf, const Piece& piece, LocalBlock& block) override;
+  double integrate(const ClippedImage& image, int kf, const Piece& piece, LocalBlock& block) override;
 
  private:
   struct Moments;

@@ -15,7 +15,7 @@ PointIntegrator::PointIntegrator(const Integrand& integrand, CouplingReport& cou
       multiplier_values_(static_cast<size_t>(integrand.multiplier_space.local_dofs()) *
                          integrand.multiplier_space.components() * 3) {}
 
-void PointIntegrator::integrate(const ClippedImage& image, int kf, const Piece& piece, LocalBlock& block) {
+double PointIntegrator::integrate(const ClippedImage& image, int kf, const Piece& piece, LocalBlock& block) {
   const MappedTriangle& mt = image.triangle;
   Point xi_corner[Piece::kMaxVertices];
   for (int v = 0; v < piece.n; ++v) xi_corner[v] = image.pull_back(piece.v[v]);
@@ -35,6 +35,7 @@ void PointIntegrator::integrate(const ClippedImage& image, int kf, const Piece& 
                           mt.affine ? mt.affine_value.jac : mv.jac, block);
     }
   }
+  return piece.area();
 }
 
 void PointIntegrator::add_reference_point(int kf, Point eta, int ks, Point xi, double ds, const double jac[2][2],

@@ -17,7 +17,7 @@ namespace dlmfsi {
 class PointIntegrator : public PieceIntegrator {
  public:
   PointIntegrator(const Integrand& integrand, CouplingReport& counts);
-  void integrate(const ClippedImage& image, int kf, const Piece& piece, LocalBlock& block) override;
+  double integrate(const ClippedImage& image, int kf, const Piece& piece, LocalBlock& block) override;
 
   // block += ds f_ij at one point: y in fluid element kf (entered in the block), xi its reference point in
   // solid triangle ks, jac = dX/ds there. The quadrature method adds its points through this.

@@ -12,8 +12,7 @@
 //
 // IntegrandOf and ElementIntegratorOf are templates on the dimension's spaces and mapped element, shared by
 // the tetrahedral assembly (integrator3d.hpp: Integrand3, TetrahedronIntegrator, with the same LocalBlock);
-// its piece integrators (PieceIntegrator3) also return each piece's volume, so they have an interface of
-// their own.
+// its piece integrators (PieceIntegrator3) take a Piece3, so they have an interface of their own.
 #pragma once
 #include <memory>
 
@@ -75,11 +74,12 @@ struct ClippedImage {
 };
 
 // Adds the integrand over one piece (image ∩ fluid element kf) to the block; the caller has entered fluid
-// element kf in the block.
+// element kf in the block. Returns the piece's area, piece.area() bit for bit (an integrator that forms it
+// anyway hands it back).
 class PieceIntegrator {
  public:
   virtual ~PieceIntegrator() = default;
-  virtual void integrate(const ClippedImage& image, int kf, const Piece& piece, LocalBlock& block) = 0;
+  virtual double integrate(const ClippedImage& image, int kf, const Piece& piece, LocalBlock& block) = 0;
 };
 
 // Adds the integrand over one mapped solid element to the block (started by the caller on that element);
