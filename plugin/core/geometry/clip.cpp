@@ -41,10 +41,18 @@ namespace {
 // nine first (without a branch), then the exact evaluation for the undecided ones.
 void filtered_sides(const Point e[3], const Point p[3], int side[3][3]) {
   bool undecided = false;
-  for (int j = 0; j < 3; ++j) {
-    const Point u = e[j], v = e[(j + 1) % 3];
-    for (int i = 0; i < 3; ++i) {
-      const int s = filtered_sign((u.x - p[i].x) * (v.y - p[i].y), (u.y - p[i].y) * (v.x - p[i].x));
+  for (int i = 0; i < 3; ++i) {
+    // e's corners less p[i], each difference formed once for the two edges that share the corner: edge j's
+    // products (u.x - p.x) (v.y - p.y) and (u.y - p.y) (v.x - p.x), u = e[j], v = e[j + 1], are orient2d's
+    double dx[4], dy[4];
+    for (int j = 0; j < 3; ++j) {
+      dx[j] = e[j].x - p[i].x;
+      dy[j] = e[j].y - p[i].y;
+    }
+    dx[3] = dx[0];
+    dy[3] = dy[0];
+    for (int j = 0; j < 3; ++j) {
+      const int s = filtered_sign(dx[j] * dy[j + 1], dy[j] * dx[j + 1]);
       side[j][i] = s;
       undecided |= s == 0;
     }
