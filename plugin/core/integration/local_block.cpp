@@ -11,8 +11,10 @@ LocalBlock::LocalBlock(int multiplier_dofs, std::vector<int> used_rows, int flui
       row_dofs_(multiplier_dofs), column_of_(fluid_dofs) {}
 
 void LocalBlock::enter_fluid_element(const int* dofs) {
-  for (int j : used_fluid_dofs_) {
-    const int g = dofs[j];
+  const int* const used = used_fluid_dofs_.data();
+  const int count = static_cast<int>(used_fluid_dofs_.size());
+  for (int u = 0; u < count; ++u) {
+    const int j = used[u], g = dofs[j];
     if (static_cast<size_t>(g) >= mark_of_dof_.size()) {
       const size_t size = std::max(static_cast<size_t>(g) + 1, 2 * mark_of_dof_.size());
       mark_of_dof_.resize(size, 0u);
@@ -20,17 +22,22 @@ void LocalBlock::enter_fluid_element(const int* dofs) {
     }
     if (mark_of_dof_[g] != block_mark_) {  // a new column: its entries are zero already
       mark_of_dof_[g] = block_mark_;
-      column_at_dof_[g] = static_cast<int>(column_dofs_.size());
-      column_dofs_.push_back(g);
-      const size_t needed = column_dofs_.size() * rows_;
-      if (entries_.size() < needed) entries_.resize(2 * needed, 0.0);
+      if (columns_ == static_cast<int>(column_dofs_.size())) add_column_room();
+      column_at_dof_[g] = columns_;
+      column_dofs_[columns_++] = g;
     }
     column_of_[j] = column_at_dof_[g];
   }
 }
 
+void LocalBlock::add_column_room() {
+  const size_t room = std::max<size_t>(8, 2 * column_dofs_.size());
+  column_dofs_.resize(room);
+  entries_.resize(room * rows_, 0.0);
+}
+
 void LocalBlock::scatter(std::vector<Triplet>& out) {
-  const size_t columns = column_dofs_.size();
+  const size_t columns = static_cast<size_t>(columns_);
   if (columns == 0) return;  // no piece (the element lies outside the fluid mesh): entries_ may be empty
   for (int i : used_rows_) {
     const int row = row_dofs_[i];
@@ -45,7 +52,7 @@ void LocalBlock::scatter(std::vector<Triplet>& out) {
 }
 
 void LocalBlock::scatter(RowSum& sum, int w, std::vector<Triplet>& later) {
-  const size_t columns = column_dofs_.size();
+  const size_t columns = static_cast<size_t>(columns_);
   if (columns == 0) return;  // no piece (the element lies outside the fluid mesh): entries_ may be empty
   if (row_columns_.size() < columns) {
     row_columns_.resize(columns);
@@ -74,7 +81,7 @@ void LocalBlock::scatter(InPlaceSum& sum, std::vector<Triplet>& misses, std::vec
   // The columns by increasing dof (a handful: insertion sort), so that each row's entries are found in one
   // pass along the matrix row. An entry's sum is over the solid elements in order whatever the order of the
   // columns within one element.
-  const int columns = static_cast<int>(column_dofs_.size());
+  const int columns = columns_;
   if (columns == 0) return;  // no piece (the element lies outside the fluid mesh): entries_ may be empty
   by_dof_.resize(columns);
   for (int c = 0; c < columns; ++c) {

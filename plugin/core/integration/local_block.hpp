@@ -59,7 +59,7 @@ class LocalBlock {
  private:
   // No column yet: the columns' dofs cleared, the marks of the last block's dofs outdated.
   void new_block() {
-    column_dofs_.clear();
+    columns_ = 0;
     if (++block_mark_ == 0) {  // wrapped: clear the marks
       std::fill(mark_of_dof_.begin(), mark_of_dof_.end(), 0u);
       block_mark_ = 1;
@@ -68,7 +68,10 @@ class LocalBlock {
   int rows_;
   std::vector<int> used_rows_, used_fluid_dofs_;
   std::vector<int> row_dofs_;     // global multiplier dof of each row
-  std::vector<int> column_dofs_;  // global fluid dof of each column
+  // A column for each dof a fluid element entered brought; room for more columns in column_dofs_ and entries_.
+  void add_column_room();
+  int columns_ = 0;
+  std::vector<int> column_dofs_;  // global fluid dof of each column, [0, columns_); its size is the room
   std::vector<int> column_of_;    // per local fluid dof of the element entered last: its column
   // Per global fluid dof: its column in this block when mark_of_dof_[dof] == block_mark_ (grown on demand).
   std::vector<int> column_at_dof_;
@@ -77,7 +80,7 @@ class LocalBlock {
   std::vector<int> by_dof_;       // scatter(InPlaceSum&, ...): the columns by increasing dof
   std::vector<int> row_columns_;  // scatter(RowSum&, ...): one row's non-zero entries
   std::vector<double> row_values_;
-  // Column-major, rows_ per column, and spare room for more columns; zero outside the current element's
+  // Column-major, rows_ per column, room for column_dofs_.size() columns; zero outside the current element's
   // columns (scatter clears what it reads), so that a new column starts at zero.
   std::vector<double> entries_;
 };
