@@ -8,6 +8,29 @@
 
 namespace dlmfsi {
 
+// Not inlined into fit, whose code stays short for the maps that give their coefficients (FieldMap).
+__attribute__((noinline)) void TriangleMap::fit_on_lattice(const SolidMap& map, double* cx, double* cy) const {
+  const int n = monomial_count(degree_);
+  double vx[monomial_count(kMaxDegree)] = {}, vy[monomial_count(kMaxDegree)] = {};
+  for (int p = 0; p < n; ++p) {
+    const Point x = map.evaluate(k, lattice_point(degree_, p)).x;
+    vx[p] = x.x;
+    vy[p] = x.y;
+  }
+  // relative to the first lattice point's value (V^-1's rows add up to e_0, constants being fitted exactly),
+  // so that the non-constant coefficients keep the digits of the triangle's size
+  const auto& inv = vandermonde_inverse(degree_);
+  for (int m = 0; m < n; ++m) {
+    cx[m] = cy[m] = 0;
+    for (int p = 1; p < n; ++p) {
+      cx[m] += inv[m * n + p] * (vx[p] - vx[0]);
+      cy[m] += inv[m * n + p] * (vy[p] - vy[0]);
+    }
+  }
+  cx[0] += vx[0];
+  cy[0] += vy[0];
+}
+
 void TriangleMap::fit(const Mesh& solid_mesh, const SolidMap& map, int kk) {
   k = kk;
   map_ = &map;
@@ -32,28 +55,14 @@ void TriangleMap::fit(const Mesh& solid_mesh, const SolidMap& map, int kk) {
   // c = V^-1 (X at the lattice points), V the lattice's Vandermonde matrix, unless the map gives c.
   const int n = monomial_count(degree_);
   double cx[monomial_count(kMaxDegree)], cy[monomial_count(kMaxDegree)];
-  if (!map.coefficients(k, cx, cy)) {
-    double vx[monomial_count(kMaxDegree)], vy[monomial_count(kMaxDegree)];
-    for (int p = 0; p < n; ++p) {
-      const Point x = map.evaluate(k, lattice_point(degree_, p)).x;
-      vx[p] = x.x;
-      vy[p] = x.y;
-    }
-    // relative to the first lattice point's value (V^-1's rows add up to e_0, constants being fitted exactly),
-    // so that the non-constant coefficients keep the digits of the triangle's size
-    const auto& inv = vandermonde_inverse(degree_);
-    for (int m = 0; m < n; ++m) {
-      cx[m] = cy[m] = 0;
-      for (int p = 1; p < n; ++p) {
-        cx[m] += inv[m * n + p] * (vx[p] - vx[0]);
-        cy[m] += inv[m * n + p] * (vy[p] - vy[0]);
-      }
-    }
-    cx[0] += vx[0];
-    cy[0] += vy[0];
-  }
-  for (int m = 0; m < n; ++m)
-    if (!std::isfinite(cx[m]) || !std::isfinite(cy[m])) throw Error("the map is NaN or Inf in " + name());
+  if (!map.coefficients(k, cx, cy)) fit_on_lattice(map, cx, cy);
+  // c * 0 is 0 for a finite c, NaN for NaN or Inf: the sum of those terms is 0 when every coefficient is finite.
+  double finite = 0;
+  if (n == 3)  // degree 1: the loop written out
+    finite = cx[0] * 0 + cy[0] * 0 + cx[1] * 0 + cy[1] * 0 + cx[2] * 0 + cy[2] * 0;
+  else
+    for (int m = 0; m < n; ++m) finite += cx[m] * 0 + cy[m] * 0;
+  if (finite != 0) throw Error("the map is NaN or Inf in " + name());
   // Monomial 0 is the constant: X(0, 0). Kept apart, so that X - X(0, 0) is evaluated to the precision of the
   // other terms (a triangle of size h at distance R from 0: relative eps, not eps R / h).
   origin_ = {cx[0], cy[0]};

@@ -41,6 +41,7 @@ class TriangleMap {
   Point corner_displacement(int i) const {
     Point x{0, 0};
     if (i == 0) return x;
+    if (degree_ == 1) return x + Point{c_.x[2 * i], c_.x[2 * i + 1]};  // the loop's one term (t = 1, m = i)
     for (int t = 1; t <= degree_; ++t) {
       const int m = t * (t + 1) / 2 + (i == 2 ? t : 0);
       x = x + Point{c_.x[2 * m], c_.x[2 * m + 1]};
@@ -97,6 +98,8 @@ class TriangleMap {
   std::string name() const { return "solid triangle " + std::to_string(k); }
 
  private:
+  // cx, cy = V^-1 (X at the degree-d lattice points), V the lattice's Vandermonde matrix (d = degree()).
+  void fit_on_lattice(const SolidMap& map, double* cx, double* cy) const;
   const SolidMap* map_ = nullptr;
   int degree_ = -1;
   Point origin_{0, 0};           // X at reference corner 0: the constant term of the fit

@@ -11,17 +11,27 @@ namespace dlmfsi {
 
 void MappedTriangle::prepare(const Mesh& solid_mesh, const SolidMap& map, int kk) {
   fit(solid_mesh, map, kk);
-  for (int i = 0; i < 3; ++i) {
-    image[i] = corner_image(i);
-    if (!std::isfinite(image[i].x) || !std::isfinite(image[i].y))
-      throw Error("the map is NaN or Inf at a corner of " + name());
+  // The image edges f1, f2: a fitted map's to the precision of the image's size (corner_displacement), the
+  // corners origin() + f1, origin() + f2.
+  Point f1, f2;
+  if (fitted()) {
+    f1 = corner_displacement(1);
+    f2 = corner_displacement(2);
+    image[0] = origin();
+    image[1] = origin() + f1;
+    image[2] = origin() + f2;
+  } else {
+    for (int i = 0; i < 3; ++i) image[i] = corner_image(i);
+    f1 = image[1] - image[0];
+    f2 = image[2] - image[0];
   }
+  // c * 0 is 0 for a finite c, NaN for NaN or Inf
+  if (image[0].x * 0 + image[0].y * 0 + image[1].x * 0 + image[1].y * 0 + image[2].x * 0 + image[2].y * 0 != 0)
+    throw Error("the map is NaN or Inf at a corner of " + name());
   const int o = orient2d(image[0], image[1], image[2]);
   if (o == 0) throw Error("the map flattens " + name() + " (its image has zero area)");
   if (o < 0) throw Error("the map inverts " + name() + " (its image is clockwise: a reflection or a fold)");
-  // A^-1 = [f1 f2]^-1 for the image edges f1, f2 (a fitted map's to the precision of the image's size)
-  const Point f1 = fitted() ? corner_displacement(1) : image[1] - image[0];
-  const Point f2 = fitted() ? corner_displacement(2) : image[2] - image[0];
+  // A^-1 = [f1 f2]^-1
   const double di = cross(f1, f2);
   image_inv_[0][0] = f2.y / di;
   image_inv_[0][1] = -f2.x / di;

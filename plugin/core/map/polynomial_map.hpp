@@ -29,14 +29,15 @@ struct PolynomialMapCoefficients {
   double x[2 * kTerms], d1[2 * kDerivativeTerms], d2[2 * kDerivativeTerms];
   // From the coefficients cx, cy of X and Y (degree d, 1 <= d <= kMaxPolynomialMapDegree).
   void set(int d, const double* cx, const double* cy) {
+    if (d == 1) {  // X = c0 + c1 xi1 + c2 xi2: constant derivatives
+      x[0] = cx[0], x[1] = cy[0], x[2] = cx[1], x[3] = cy[1], x[4] = cx[2], x[5] = cy[2];
+      d1[0] = cx[1], d1[1] = cy[1], d2[0] = cx[2], d2[1] = cy[2];
+      return;
+    }
     const int n = monomial_count(d), n1 = monomial_count(d - 1);
     for (int m = 0; m < n; ++m) {
       x[2 * m] = cx[m];
       x[2 * m + 1] = cy[m];
-    }
-    if (d == 1) {  // X = c0 + c1 xi1 + c2 xi2: constant derivatives
-      d1[0] = cx[1], d1[1] = cy[1], d2[0] = cx[2], d2[1] = cy[2];
-      return;
     }
     double e1x[kDerivativeTerms], e1y[kDerivativeTerms], e2x[kDerivativeTerms], e2y[kDerivativeTerms];
     derive_polynomial(d, cx, e1x, e2x);
