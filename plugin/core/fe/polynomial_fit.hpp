@@ -166,51 +166,61 @@ inline bool partition_of_unity(const double* c, int n, int nm) {
   return true;
 }
 
-// One element's sum for field_monomials (NM > 0: the monomial count fixed at compile time, else nm).
-template <int NM>
-inline void field_element(const double* values, const int* dofs, const std::vector<int>& local_dof, const double* c,
+// One element's sum for field_monomials: the count functions' coefficients (n = NM > 0 ? NM : nm each, from c)
+// weighted by the values at their dofs (NF > 0: count = NF, both fixed at compile time so the loops unroll).
+// sums: where the sums are formed before they are stored to o (o itself, or with NM > 0 a local array the
+// compiler keeps in registers: o may alias values and c).
+template <int NM, int NF>
+inline void field_element(const double* values, const int* dofs, const int* local_dof, int count, const double* c,
                           bool unity, int nm, double* o) {
   const int n = NM > 0 ? NM : nm;
+  const int nf = NF > 0 ? NF : count;
+  double local[NM > 0 ? NM : 1];
+  double* sums = NM > 0 ? local : o;
   const double value = values[dofs[local_dof[0]]];
   if (unity) {
-    for (int m = 0; m < n; ++m) o[m] = 0.0;
-    for (std::size_t i = 1; i < local_dof.size(); ++i) {
+    for (int m = 0; m < n; ++m) sums[m] = 0.0;
+    for (int i = 1; i < nf; ++i) {
       const double v = values[dofs[local_dof[i]]] - value;
-      const double* ci = c + i * n;
-      for (int m = 0; m < n; ++m) o[m] += v * ci[m];
+      const double* ci = c + static_cast<std::size_t>(i) * n;
+      for (int m = 0; m < n; ++m) sums[m] += v * ci[m];
     }
-    o[0] += value;
-    return;
+    sums[0] += value;
+  } else {
+    // the first term added to zero (+ 0.0: a -0 term gives +0, as a sum from zero does)
+    for (int m = 0; m < n; ++m) sums[m] = value * c[m] + 0.0;
+    for (int i = 1; i < nf; ++i) {
+      c += n;
+      const double v = values[dofs[local_dof[i]]];
+      for (int m = 0; m < n; ++m) sums[m] += v * c[m];
+    }
   }
-  // the first term added to zero (+ 0.0: a -0 term gives +0, as a sum from zero does)
-  for (int m = 0; m < n; ++m) o[m] = value * c[m] + 0.0;
-  for (std::size_t i = 1; i < local_dof.size(); ++i) {
-    c += n;
-    const double v = values[dofs[local_dof[i]]];
-    for (int m = 0; m < n; ++m) o[m] += v * c[m];
-  }
+  if (NM > 0)
+    for (int m = 0; m < n; ++m) o[m] = sums[m];
 }
 
-// A field's polynomials on the elements [first, last): out[k * stride + offset + m] = the coefficient of
-// monomial m, on element k, of the sum over the fitted functions f of values[global dof of f] * (function
-// f) (Fit: PolynomialBasis or PolynomialBasis3 of nm monomials, fitted on space), summed from zero in the
-// functions' order. Where the functions add up to 1 the sum is taken relative to the first function's value
-// v0, sum_f (v_f - v0) f + v0 (the non-constant coefficients without the v0 sum_f c_f = 0 they would carry):
-// a map of an element of size h at distance R from 0 then has non-constant coefficients to relative
-// precision eps instead of eps R / h (v_f - v0 is exact for values within a factor 2 of each other).
+// Fields' polynomials on the elements [first, last), fields values[0..fields) on one space and fit: out[k *
+// stride + offset + f * nm + m] = the coefficient of monomial m, on element k, of the sum over the fitted
+// functions g of values[f][global dof of g] * (function g) (Fit: PolynomialBasis or PolynomialBasis3 of nm
+// monomials, fitted on space), summed from zero in the functions' order. Where the functions add up to 1
+// the sum is taken relative to the first function's value v0, sum_g (v_g - v0) g + v0 (the non-constant
+// coefficients without the v0 sum_g c_g = 0 they would carry): a map of an element of size h at distance R
+// from 0 then has non-constant coefficients to relative precision eps instead of eps R / h (v_g - v0 is
+// exact for values within a factor 2 of each other). An element's dofs are asked once for all the fields.
 template <int D, class Fit>
-void field_monomials(const BasisOf<D>& space, const double* values, const Fit& fit, int nm, int first, int last,
-                     double* out, std::size_t offset, std::size_t stride) {
+void field_monomials(const BasisOf<D>& space, const double* const* values, int fields, const Fit& fit, int nm,
+                     int first, int last, double* out, std::size_t offset, std::size_t stride) {
   const int nd = space.local_dofs();
   const int* const table = space.dof_table();
   std::vector<int> asked(nd), local_dof;  // asked: the dofs from dofs() when there is no table
   for (int f : fit.functions()) local_dof.push_back(f / space.components());
+  const int count = static_cast<int>(local_dof.size());
   const double* unity_checked = nullptr;
   bool unity = false;
   for (int k = first; k < last; ++k) {
     double* o = out + static_cast<std::size_t>(k) * stride + offset;
     if (local_dof.empty()) {
-      std::fill(o, o + nm, 0.0);
+      std::fill(o, o + static_cast<std::size_t>(fields) * nm, 0.0);
       continue;
     }
     const int* dofs = asked.data();
@@ -221,13 +231,24 @@ void field_monomials(const BasisOf<D>& space, const double* values, const Fit& f
     const double* c = fit.coefficients(k);
     if (c != unity_checked) {  // elements that share a fit (the same pointer) share the answer
       unity_checked = c;
-      unity = partition_of_unity(c, static_cast<int>(local_dof.size()), nm);
+      unity = partition_of_unity(c, count, nm);
     }
-    if (nm == D + 1)  // affine maps (P1, P13d): the loops unrolled
-      field_element<D + 1>(values, dofs, local_dof, c, unity, nm, o);
-    else
-      field_element<0>(values, dofs, local_dof, c, unity, nm, o);
+    for (int f = 0; f < fields; ++f, o += nm) {
+      if (nm == D + 1 && count == D + 1)  // affine maps from P1 or P13d: the loops unrolled
+        field_element<D + 1, D + 1>(values[f], dofs, local_dof.data(), count, c, unity, nm, o);
+      else if (nm == D + 1)
+        field_element<D + 1, 0>(values[f], dofs, local_dof.data(), count, c, unity, nm, o);
+      else
+        field_element<0, 0>(values[f], dofs, local_dof.data(), count, c, unity, nm, o);
+    }
   }
+}
+
+// One field: out[k * stride + offset + m] (the same sums).
+template <int D, class Fit>
+void field_monomials(const BasisOf<D>& space, const double* values, const Fit& fit, int nm, int first, int last,
+                     double* out, std::size_t offset, std::size_t stride) {
+  field_monomials(space, &values, 1, fit, nm, first, last, out, offset, stride);
 }
 
 }  // namespace dlmfsi

@@ -54,7 +54,15 @@ FieldMap::FieldMap(const Mesh& solid, const Basis& space_x, const double* coef_x
   }
   const int nm = monomial_count(degree_), size = solid.size();
   monomial_coef_.reset(new double[static_cast<size_t>(size) * 2 * nm]);
+  // X and Y on one space, component and fit (two functions of one scalar space): both in one pass.
+  const bool together = fit[0] == fit[1] && part_[0].space == part_[1].space && part_[0].comp == part_[1].comp;
+  const double* values[2] = {part_[0].coef, part_[1].coef};
   on_shares(threads_for(threads, size, 8192), size, [&](int first, int last) {
+    if (together) {
+      field_monomials(*part_[0].space, values, 2, *fit[0], nm, first, last, monomial_coef_.get(), 0,
+                      2 * static_cast<size_t>(nm));
+      return;
+    }
     for (int a = 0; a < 2; ++a)
       field_monomials(*part_[a].space, part_[a].coef, *fit[a], nm, first, last, monomial_coef_.get(),
                       static_cast<size_t>(a) * nm, 2 * static_cast<size_t>(nm));
@@ -65,6 +73,11 @@ bool FieldMap::coefficients(int k, double* cx, double* cy) const {
   if (!monomial_coef_) return false;
   const int nm = monomial_count(degree_);
   const double* c = &monomial_coef_[static_cast<size_t>(k) * 2 * nm];
+  if (nm == 3) {  // degree 1: six copies, not two calls to copy a variable length
+    cx[0] = c[0], cx[1] = c[1], cx[2] = c[2];
+    cy[0] = c[3], cy[1] = c[4], cy[2] = c[5];
+    return true;
+  }
   std::copy(c, c + nm, cx);
   std::copy(c + nm, c + 2 * nm, cy);
   return true;
