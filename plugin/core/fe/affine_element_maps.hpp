@@ -2,7 +2,7 @@
 // p1, p2 the corners), inverted: per element d xi / d x = [e1 e2]^-1.
 #pragma once
 #include <cstddef>
-#include <vector>
+#include <memory>
 
 #include "mesh/mesh.hpp"
 
@@ -13,7 +13,7 @@ class AffineElementMaps {
   explicit AffineElementMaps(const Mesh& mesh);
 
   // d xi / d x on element k, row by row: dxi1/dx, dxi1/dy, dxi2/dx, dxi2/dy.
-  const double* inverse_jacobian(int k) const { return &inverse_jacobian_[4 * static_cast<size_t>(k)]; }
+  const double* inverse_jacobian(int k) const { return inverse_jacobian_.get() + 4 * static_cast<size_t>(k); }
 
   void prefetch(int k) const { __builtin_prefetch(inverse_jacobian(k)); }
 
@@ -34,7 +34,7 @@ class AffineElementMaps {
 
  private:
   const Mesh& mesh_;
-  std::vector<double> inverse_jacobian_;  // 4 entries per element
+  std::unique_ptr<double[]> inverse_jacobian_;  // 4 entries per element, each written by the constructor
 };
 
 }  // namespace dlmfsi

@@ -92,13 +92,18 @@ FluidGridOf<Elements>::FluidGridOf(const MeshT& fluid) : fluid_(fluid) {
     cells *= static_cast<std::size_t>(n_[a]);
   }
   std::vector<int> count(cells + 1, 0);
+  // Each element's range of cells (i0 then i1, D each), found once for the two passes.
+  std::vector<int> range(static_cast<std::size_t>(nt) * 2 * D);
+  for (int k = 0; k < nt; ++k) {
+    PointT c[Elements::kCorners];
+    fluid.corners(k, c);
+    int* r = &range[static_cast<std::size_t>(k) * 2 * D];
+    cells_of(c, Elements::kCorners, r, r + D);
+  }
   auto boxes = [&](auto&& f) {
     for (int k = 0; k < nt; ++k) {
-      PointT c[Elements::kCorners];
-      fluid.corners(k, c);
-      int i0[D], i1[D];
-      cells_of(c, Elements::kCorners, i0, i1);
-      for_each_cell(i0, i1, [&](std::size_t cell) { f(cell, k); });
+      const int* r = &range[static_cast<std::size_t>(k) * 2 * D];
+      for_each_cell(r, r + D, [&](std::size_t cell) { f(cell, k); });
     }
   };
   boxes([&](std::size_t c, int) { ++count[c + 1]; });

@@ -10,22 +10,30 @@
 namespace dlmfsi {
 
 // The element numbers sorted by their keys, ties by element number: keyed[k] = {key, k} in order of k (both
-// callers build it so), and a least-significant-digit radix sort (three stable passes of 11 bits) keeps the
-// order of equal keys, so the result is that of sorting the pairs (key, k), in O(n).
+// callers build it so), and a least-significant-digit radix sort (three stable passes of 11 bits, the three
+// digits' counts taken in one reading) keeps the order of equal keys, so the result is that of sorting the
+// pairs (key, k), in O(n). The last pass writes the element numbers alone.
 inline std::vector<int> order_by_key(std::vector<std::pair<uint32_t, int>> keyed) {
-  constexpr int kBits = 11, kBuckets = 1 << kBits;
-  std::vector<std::pair<uint32_t, int>> other(keyed.size());
-  std::vector<std::size_t> start(kBuckets);
-  for (int shift = 0; shift < 32; shift += kBits) {
-    std::fill(start.begin(), start.end(), 0);
-    for (const auto& e : keyed) ++start[(e.first >> shift) & (kBuckets - 1)];
+  constexpr int kBits = 11, kBuckets = 1 << kBits, kPasses = 3;
+  std::vector<std::size_t> start(kPasses * kBuckets, 0);
+  for (const auto& e : keyed)
+    for (int p = 0; p < kPasses; ++p) ++start[p * kBuckets + ((e.first >> (p * kBits)) & (kBuckets - 1))];
+  for (int p = 0; p < kPasses; ++p) {
     std::size_t at = 0;
-    for (std::size_t& s : start) at += std::exchange(s, at);
-    for (const auto& e : keyed) other[start[(e.first >> shift) & (kBuckets - 1)]++] = e;
+    for (int b = 0; b < kBuckets; ++b) at += std::exchange(start[p * kBuckets + b], at);
+  }
+  std::vector<std::pair<uint32_t, int>> other(keyed.size());
+  std::vector<int> order(keyed.size());
+  for (int p = 0; p < kPasses; ++p) {
+    std::size_t* s = &start[p * kBuckets];
+    const int shift = p * kBits;
+    if (p + 1 == kPasses) {
+      for (const auto& e : keyed) order[s[(e.first >> shift) & (kBuckets - 1)]++] = e.second;
+      break;
+    }
+    for (const auto& e : keyed) other[s[(e.first >> shift) & (kBuckets - 1)]++] = e;
     keyed.swap(other);
   }
-  std::vector<int> order(keyed.size());
-  for (std::size_t k = 0; k < keyed.size(); ++k) order[k] = keyed[k].second;
   return order;
 }
 

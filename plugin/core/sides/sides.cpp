@@ -35,9 +35,14 @@ SolidSide::SolidSide(Mesh mesh, const Basis& multiplier, const std::vector<int>&
                polynomial_degree(multiplier, components))),
       basis_(multiplier, mesh_, degree_, components), order_(morton_order(mesh_)),
       rows_(static_cast<size_t>(mesh_.size()) * multiplier.local_dofs()) {
-  // rows_ holds each triangle's dofs first, then their rows.
+  // The triangles' dofs: the space's table, or (without one) rows_ filled with them, each entry then
+  // replaced by its row where it is read (order_ visits every triangle once).
   const size_t local = static_cast<size_t>(multiplier.local_dofs());
-  for (int k = 0; k < mesh_.size(); ++k) space_.dofs(k, &rows_[k * local]);
+  const int* dofs = multiplier.dof_table();
+  if (!dofs) {
+    for (int k = 0; k < mesh_.size(); ++k) space_.dofs(k, &rows_[k * local]);
+    dofs = rows_.data();
+  }
   // The rows in order of first use along the triangles' order; dofs no triangle uses last.
   const int count = multiplier.dof_count();
   row_of_dof_.assign(count, -1);
@@ -46,11 +51,11 @@ SolidSide::SolidSide(Mesh mesh, const Basis& multiplier, const std::vector<int>&
     if (d < 0 || d >= count)
       throw Error("the multiplier space gives dof " + std::to_string(d) + " outside 0.." + std::to_string(count - 1));
     if (row_of_dof_[d] < 0) row_of_dof_[d] = next++;
+    return row_of_dof_[d];
   };
   for (int k : order_)
-    for (size_t i = 0; i < local; ++i) number(rows_[k * local + i]);
+    for (size_t i = k * local; i < (k + 1) * local; ++i) rows_[i] = number(dofs[i]);
   for (int d = 0; d < count; ++d) number(d);
-  for (int& r : rows_) r = row_of_dof_[r];
   for (int d = 0; d < count && rows_are_dofs_; ++d) rows_are_dofs_ = row_of_dof_[d] == d;
 }
 
