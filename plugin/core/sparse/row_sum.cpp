@@ -81,6 +81,25 @@ void RowSum::fill_row(int i, CsrMatrix& m, size_t at, const CompressedRows& spil
   }
   const std::vector<Chunk>& chunks = writers_[head & ((1 << writer_bits_) - 1)].chunks;
   const int count = chunks[head >> writer_bits_].count;
+#ifdef __SSE2__
+  if (count <= kChunk) {  // one chunk (the usual row): each column placed at its rank
+    const Chunk& chunk = chunks[head >> writer_bits_];
+    const __m128i low = _mm_loadu_si128(reinterpret_cast<const __m128i*>(chunk.column));
+    const __m128i high = _mm_loadu_si128(reinterpret_cast<const __m128i*>(chunk.column + 4));
+    for (int k = 0; k < count; ++k) {
+      // -(the chunk's columns below column[k]): the columns are distinct, and the kChunk - count unused
+      // places hold -1, below every column
+      const __m128i c = _mm_set1_epi32(chunk.column[k]);
+      __m128i below = _mm_add_epi32(_mm_cmpgt_epi32(c, low), _mm_cmpgt_epi32(c, high));
+      below = _mm_add_epi32(below, _mm_shuffle_epi32(below, 0x4E));
+      below = _mm_add_epi32(below, _mm_shuffle_epi32(below, 0xB1));
+      const int rank = -_mm_cvtsi128_si32(below) - (kChunk - count);
+      column[rank] = chunk.column[k];
+      value[rank] = chunk.value[k];
+    }
+    return;
+  }
+#endif
   int n = 0;
   for (int c = head >> writer_bits_; n < count; c = chunks[c].next) {
     const Chunk& chunk = chunks[c];
