@@ -136,13 +136,15 @@ void check_mesh_planar(const Mesh& mesh, const FluidGrid& grid, const std::strin
                        const std::vector<int>* original) {
   auto id = [original](int k) { return std::to_string(original ? (*original)[k] : k); };
   std::vector<int> seen(mesh.size(), -1);
-  for (int k = 0; k < mesh.size(); ++k)
+  for (int k = 0; k < mesh.size(); ++k) {
+    Point corner[3];
+    mesh.corners(k, corner);
     for (int i = 0; i < 3; ++i) {
-      const Point p = mesh.vertex(k, (i + 1) % 3), q = mesh.vertex(k, (i + 2) % 3);
       const int n = mesh.neighbours[k][i];
+      if (n >= 0 && n < k) continue;  // the edge seen from n
+      const Point p = corner[(i + 1) % 3], q = corner[(i + 2) % 3];
       if (n >= 0) {
         // The neighbour's vertex opposite the shared edge lies on the other side.
-        if (n < k) continue;
         for (int j = 0; j < 3; ++j)
           if (mesh.neighbours[n][j] == k && orient2d(p, q, mesh.vertex(n, j)) >= 0)
             throw Error(name + " overlaps itself: triangles " + id(k) + " and " + id(n) +
@@ -164,6 +166,7 @@ void check_mesh_planar(const Mesh& mesh, const FluidGrid& grid, const std::strin
                       id(k) + " that has no neighbour (a hanging vertex)");
       });
     }
+  }
 }
 
 void check_finite(const CsrMatrix& matrix, const CouplingOptions& opt) {
