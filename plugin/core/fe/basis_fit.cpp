@@ -52,9 +52,12 @@ void BasisFit::check(int k, const double* v) {
   // One evaluation decides whether element k shares the reference fit.
   basis_.values(k, kCheckPoint, sample_.data());
   // element 0's values bit for bit: its check's outcome (passed), without the fit's sums
-  if (same_values<2>(sample_.data(), functions_, first_values_) ||
-      fit_matches<2>(reference_.data(), nm_, v, functions_, sample_.data()))
-    return;
+  if (!same_values<2>(sample_.data(), functions_, first_values_)) check_sample(k, v);
+}
+
+// Not inlined into check, whose code stays short for the elements that give element 0's values.
+__attribute__((noinline)) void BasisFit::check_sample(int k, const double* v) {
+  if (fit_matches<2>(reference_.data(), nm_, v, functions_, sample_.data())) return;
   slot_[k] = static_cast<int>(own_.size());
   own_.resize(own_.size() + functions_.size() * nm_);
   fit(k, &own_[slot_[k]]);

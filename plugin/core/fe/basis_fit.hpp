@@ -45,6 +45,8 @@ class BasisFit {
  private:
   void fit(int k, double* coefficients);
   void check(int k, const double* v);  // v: the monomials at the check point
+  // The rest of check for values in sample_ other than element 0's: the fit's sums, element k's own fit.
+  void check_sample(int k, const double* v);
   void derive(const std::vector<double>& coefficients, std::vector<double>& derivative) const;
   const Basis& basis_;
   int degree_, nm_;

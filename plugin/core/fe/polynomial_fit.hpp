@@ -199,6 +199,35 @@ inline void field_element(const double* values, const int* dofs, const int* loca
     for (int m = 0; m < n; ++m) o[m] = sums[m];
 }
 
+// field_monomials' loop over the elements, for local_dof's functions (count of them, nm monomials each;
+// field_element<NM, NF>: NM, NF fixed when nonzero).
+template <int NM, int NF, int D, class Fit>
+void field_elements(const BasisOf<D>& space, const double* const* values, int fields, const Fit& fit, int nm,
+                    const std::vector<int>& local_dof, int first, int last, double* out, std::size_t offset,
+                    std::size_t stride) {
+  const int nd = space.local_dofs();
+  const int* const table = space.dof_table();
+  const int count = static_cast<int>(local_dof.size());
+  std::vector<int> asked(nd);  // the dofs from dofs() when there is no table
+  const double* unity_checked = nullptr;
+  bool unity = false;
+  for (int k = first; k < last; ++k) {
+    double* o = out + static_cast<std::size_t>(k) * stride + offset;
+    const int* dofs = asked.data();
+    if (table)
+      dofs = table + static_cast<std::size_t>(k) * nd;
+    else
+      space.dofs(k, asked.data());
+    const double* c = fit.coefficients(k);
+    if (c != unity_checked) {  // elements that share a fit (the same pointer) share the answer
+      unity_checked = c;
+      unity = partition_of_unity(c, count, nm);
+    }
+    for (int f = 0; f < fields; ++f, o += nm)
+      field_element<NM, NF>(values[f], dofs, local_dof.data(), count, c, unity, nm, o);
+  }
+}
+
 // Fields' polynomials on the elements [first, last), fields values[0..fields) on one space and fit: out[k *
 // stride + offset + f * nm + m] = the coefficient of monomial m, on element k, of the sum over the fitted
 // functions g of values[f][global dof of g] * (function g) (Fit: PolynomialBasis or PolynomialBasis3 of nm
@@ -210,38 +239,22 @@ inline void field_element(const double* values, const int* dofs, const int* loca
 template <int D, class Fit>
 void field_monomials(const BasisOf<D>& space, const double* const* values, int fields, const Fit& fit, int nm,
                      int first, int last, double* out, std::size_t offset, std::size_t stride) {
-  const int nd = space.local_dofs();
-  const int* const table = space.dof_table();
-  std::vector<int> asked(nd), local_dof;  // asked: the dofs from dofs() when there is no table
+  std::vector<int> local_dof;
   for (int f : fit.functions()) local_dof.push_back(f / space.components());
-  const int count = static_cast<int>(local_dof.size());
-  const double* unity_checked = nullptr;
-  bool unity = false;
-  for (int k = first; k < last; ++k) {
-    double* o = out + static_cast<std::size_t>(k) * stride + offset;
-    if (local_dof.empty()) {
+  if (local_dof.empty()) {
+    for (int k = first; k < last; ++k) {
+      double* o = out + static_cast<std::size_t>(k) * stride + offset;
       std::fill(o, o + static_cast<std::size_t>(fields) * nm, 0.0);
-      continue;
     }
-    const int* dofs = asked.data();
-    if (table)
-      dofs = table + static_cast<std::size_t>(k) * nd;
-    else
-      space.dofs(k, asked.data());
-    const double* c = fit.coefficients(k);
-    if (c != unity_checked) {  // elements that share a fit (the same pointer) share the answer
-      unity_checked = c;
-      unity = partition_of_unity(c, count, nm);
-    }
-    for (int f = 0; f < fields; ++f, o += nm) {
-      if (nm == D + 1 && count == D + 1)  // affine maps from P1 or P13d: the loops unrolled
-        field_element<D + 1, D + 1>(values[f], dofs, local_dof.data(), count, c, unity, nm, o);
-      else if (nm == D + 1)
-        field_element<D + 1, 0>(values[f], dofs, local_dof.data(), count, c, unity, nm, o);
-      else
-        field_element<0, 0>(values[f], dofs, local_dof.data(), count, c, unity, nm, o);
-    }
+    return;
   }
+  const int count = static_cast<int>(local_dof.size());
+  if (nm == D + 1 && count == D + 1)  // affine maps from P1 or P13d: the loops unrolled
+    field_elements<D + 1, D + 1>(space, values, fields, fit, nm, local_dof, first, last, out, offset, stride);
+  else if (nm == D + 1)
+    field_elements<D + 1, 0>(space, values, fields, fit, nm, local_dof, first, last, out, offset, stride);
+  else
+    field_elements<0, 0>(space, values, fields, fit, nm, local_dof, first, last, out, offset, stride);
 }
 
 // One field: out[k * stride + offset + m] (the same sums).
