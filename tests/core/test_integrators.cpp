@@ -220,8 +220,10 @@ std::array<std::array<double, 3>, 3> integrate_piece(const OnePiece& setup, doub
   const int fluid_dofs[3] = {0, 1, 2};
   block.enter_fluid_element(fluid_dofs);
   const Piece piece = setup.piece();
+  const ClippedImage image{mt, 2, nullptr};
+  integrator.start(image);
   // the area the exact method sums to find an image's part outside the fluid: piece.area(), bit for bit
-  EXPECT_EQ(integrator.integrate(ClippedImage{mt, 2, nullptr}, 0, piece, block), piece.area());
+  EXPECT_EQ(integrator.integrate(image, 0, piece, block), piece.area());
   std::array<std::array<double, 3>, 3> out{};
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 3; ++i) out[i][j] = block.column(j)[i];
@@ -281,7 +283,9 @@ TEST(PieceIntegrators, PointsGiveTheListingsProduct) {
   const int fluid_dofs[6] = {0, 2, 4, 1, 3, 5};
   block.enter_fluid_element(fluid_dofs);
   const Piece piece = setup.piece();
-  integrator.integrate(ClippedImage{mt, 2, nullptr}, 0, piece, block);
+  const ClippedImage image{mt, 2, nullptr};
+  integrator.start(image);
+  integrator.integrate(image, 0, piece, block);
 
   const auto mass = setup.reference(0, c2);
   Point f[3], t[3];

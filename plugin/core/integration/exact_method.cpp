@@ -86,11 +86,13 @@ double ExactMethod::clip(const ClippedImage& image, const Point img[3], LocalBlo
     });
     if (exact) {
       const ClippedImage local{image.triangle, image.degree, image.part, origin};
+      integrator.start(local);
       for (const auto& [kf, piece] : local_pieces_) add_piece(local, kf, piece);
       return area - covered;
     }
     hint_ = hint;  // in absolute coordinates, from the same start
   }
+  integrator.start(image);
   search_.for_each_piece(img, hint_, [&](int kf, const Piece& piece) { add_piece(image, kf, piece); });
   return area - covered;
 }

@@ -52,6 +52,18 @@ inline void affine3(const PolynomialBasis& basis, int k, Point xi, double* value
   }
 }
 
+// PolynomialBasis::evaluate_affine's values alone, for `width` functions of three monomials (1, xi1, xi2)
+// each (W = 3: unrolled) or of one monomial (1).
+template <int W>
+inline void affine_values(const PolynomialBasis& basis, int k, Point xi, int width, double* value) {
+  const double* c = basis.coefficients(k);
+  if (!W && basis.terms() == 1) {
+    for (int f = 0; f < width; ++f) value[f] = c[f];
+    return;
+  }
+  for (int f = 0; f < (W ? W : width); ++f, c += 3) value[f] = c[0] + c[1] * xi.x + c[2] * xi.y;
+}
+
 }  // namespace
 
 bool MomentIntegrator::applies(const Integrand& integrand) {
@@ -81,6 +93,35 @@ MomentIntegrator::MomentIntegrator(const Integrand& integrand, CouplingReport& c
     add_ = &MomentIntegrator::add<0, 0>;
 }
 
+void MomentIntegrator::start(const ClippedImage& image) {
+  const MappedTriangle& mt = image.triangle;
+  const double(&j)[2][2] = mt.affine_value.jac;  // dX_a/ds_b
+  const double det = mt.affine_det;
+  mass_ = integrand_.c2 / det;
+  // the gradients in s (a fit of degree <= 1: the same at every point), as evaluate_affine forms them, and
+  // in y: (dX/ds)^-T grad_s psi
+  auto in_y = [&](double gx, double gy, int f) {
+    sgx_[f] = gx;
+    sgy_[f] = gy;
+    syx_[f] = (j[1][1] * gx - j[1][0] * gy) / det;
+    syy_[f] = (j[0][0] * gy - j[0][1] * gx) / det;
+  };
+  if (add_ == &MomentIntegrator::add<3, 3>) {  // three functions of 1, xi1, xi2
+    const double* c = integrand_.multiplier.coefficients(mt.k);
+    const double* jinv = integrand_.multiplier.inverse_jacobian(mt.k);
+    double gx[3], gy[3];
+    for (int f = 0; f < 3; ++f) {
+      gx[f] = c[3 * f + 1] * jinv[0] + c[3 * f + 2] * jinv[2];
+      gy[f] = c[3 * f + 1] * jinv[1] + c[3 * f + 2] * jinv[3];
+    }
+    for (int f = 0; f < 3; ++f) in_y(gx[f], gy[f], f);
+    return;
+  }
+  double values[kMaxFunctions], gx[kMaxFunctions], gy[kMaxFunctions];
+  integrand_.multiplier.evaluate_affine(mt.k, Point{}, values, gx, gy);
+  for (int f = 0; f < multiplier_functions_; ++f) in_y(gx[f], gy[f], f);
+}
+
 double MomentIntegrator::integrate(const ClippedImage& image, int kf, const Piece& piece, LocalBlock& block) {
   const Moments moments(piece);  // its area is piece.area(): the same fan, the same products and sums
   counts_.points += 1;
@@ -95,17 +136,15 @@ void MomentIntegrator::add(const ClippedImage& image, int kf, const Moments& mo,
   const PolynomialBasis &fluid = integrand_.fluid, &multiplier = integrand_.multiplier;
   // the centroid relative to image.origin, as the piece
   const Point eta = fluid.to_reference(kf, mo.centroid, image.origin), xi = image.pull_back(mo.centroid);
-  double fv[kMaxFunctions], fgx[kMaxFunctions], fgy[kMaxFunctions];
-  double sv[kMaxFunctions], sgx[kMaxFunctions], sgy[kMaxFunctions];
-  if (FW == 3 && SW == 3) {  // three functions of 1, xi1, xi2 each (P1): evaluate_affine's sums, unrolled
+  double fv[kMaxFunctions], fgx[kMaxFunctions], fgy[kMaxFunctions], sv[kMaxFunctions];
+  if (FW == 3 && SW == 3)  // three functions of 1, xi1, xi2 each (P1): evaluate_affine's sums, unrolled
     affine3(fluid, kf, eta, fv, fgx, fgy);
-    affine3(multiplier, mt.k, xi, sv, sgx, sgy);
-  } else {
+  else
     fluid.evaluate_affine(kf, eta, fv, fgx, fgy);
-    multiplier.evaluate_affine(mt.k, xi, sv, sgx, sgy);
-  }
+  affine_values<SW>(multiplier, mt.k, xi, sw, sv);
+  const double *sgx = sgx_, *sgy = sgy_, *syx = syx_, *syy = syy_;  // start()'s
   const double(&j)[2][2] = mt.affine_value.jac;  // dX_a/ds_b
-  const double area = mo.area, det = mt.affine_det, mass = integrand_.c2 / det, stiff = integrand_.c1 * area / det;
+  const double area = mo.area, mass = mass_;
   // per fluid function: c2/det (A phi(c), M grad phi), and the chain-rule gradient times c1 A / det
   double fa[kMaxFunctions], fmx[kMaxFunctions], fmy[kMaxFunctions], fcx[kMaxFunctions], fcy[kMaxFunctions];
   for (int f = 0; f < fw; ++f) {
@@ -113,16 +152,12 @@ void MomentIntegrator::add(const ClippedImage& image, int kf, const Moments& mo,
     fmx[f] = mass * (mo.mxx * fgx[f] + mo.mxy * fgy[f]);
     fmy[f] = mass * (mo.mxy * fgx[f] + mo.myy * fgy[f]);
   }
-  if (gradients_)
+  if (gradients_) {
+    const double stiff = integrand_.c1 * area / mt.affine_det;
     for (int f = 0; f < fw; ++f) {
       fcx[f] = stiff * (fgx[f] * j[0][0] + fgy[f] * j[1][0]);
       fcy[f] = stiff * (fgx[f] * j[0][1] + fgy[f] * j[1][1]);
     }
-  // per multiplier function: its gradient in y, (dX/ds)^-T grad_s psi
-  double syx[kMaxFunctions], syy[kMaxFunctions];
-  for (int f = 0; f < sw; ++f) {
-    syx[f] = (j[1][1] * sgx[f] - j[1][0] * sgy[f]) / det;
-    syy[f] = (j[0][0] * sgy[f] - j[0][1] * sgx[f]) / det;
   }
   auto entry = [&](int f, int g) {
     double sum = fa[f] * sv[g] + fmx[f] * syx[g] + fmy[f] * syy[g];

@@ -19,6 +19,8 @@ class MomentIntegrator : public PieceIntegrator {
   static bool applies(const Integrand& integrand);
 
   MomentIntegrator(const Integrand& integrand, CouplingReport& counts);
+  // The multiplier's terms on the image's (affine) triangle: its gradients in s and in y, and c2 / det.
+  void start(const ClippedImage& image) override;
   double integrate(const ClippedImage& image, int kf, const Piece& piece, LocalBlock& block) override;
 
  private:
@@ -35,6 +37,10 @@ class MomentIntegrator : public PieceIntegrator {
   // One pair that reads every fitted function in order (a scalar space on each side).
   bool one_pair_;
   void (MomentIntegrator::*add_)(const ClippedImage&, int, const Moments&, LocalBlock&);
+  // start()'s terms, the same for every piece of the triangle: c2 / det, and per multiplier function its
+  // gradient in s (sgx, sgy) and in y, (dX/ds)^-T grad_s psi (syx, syy).
+  double mass_ = 0;
+  double sgx_[kMaxFunctions], sgy_[kMaxFunctions], syx_[kMaxFunctions], syy_[kMaxFunctions];
 };
 
 }  // namespace dlmfsi

@@ -74,11 +74,13 @@ struct ClippedImage {
 };
 
 // Adds the integrand over one piece (image ∩ fluid element kf) to the block; the caller has entered fluid
-// element kf in the block. Returns the piece's area, piece.area() bit for bit (an integrator that forms it
-// anyway hands it back).
+// element kf in the block, and called start(image) before the image's first piece. Returns the piece's area,
+// piece.area() bit for bit (an integrator that forms it anyway hands it back).
 class PieceIntegrator {
  public:
   virtual ~PieceIntegrator() = default;
+  // Before the pieces of an image: what does not change from piece to piece may be formed here, once.
+  virtual void start(const ClippedImage& /*image*/) {}
   virtual double integrate(const ClippedImage& image, int kf, const Piece& piece, LocalBlock& block) = 0;
 };
 
