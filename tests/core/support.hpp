@@ -55,6 +55,12 @@ class P1 : public Basis {
       out[3 * i + 2] = g[i][1];
     }
   }
+  // The barycentric coordinates alone (as the FreeFEM adapter's spaces give values without derivatives).
+  void values(int, Point xi, double* out) const override {
+    out[0] = 1 - xi.x - xi.y;
+    out[3] = xi.x;
+    out[6] = xi.y;
+  }
 
  private:
   const Mesh& m_;
