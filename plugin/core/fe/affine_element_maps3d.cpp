@@ -1,9 +1,14 @@
 #include "fe/affine_element_maps3d.hpp"
 
+#include "buffer_room.hpp"
+
 namespace dlmfsi {
 
 AffineElementMaps3::AffineElementMaps3(const Mesh3& mesh) : mesh_(mesh) {
-  inverse_jacobian_.resize(9 * static_cast<size_t>(mesh.size()));
+  const size_t entries = 9 * static_cast<size_t>(mesh.size());
+  inverse_jacobian_.reserve(entries);
+  advise_huge_pages(inverse_jacobian_.data(), entries * sizeof(double));
+  inverse_jacobian_.resize(entries);
   for (int k = 0; k < mesh.size(); ++k) {
     // x = p0 + E xi with E = [e1 e2 e3]: E^-1 has rows (e2 x e3, e3 x e1, e1 x e2) / det E
     Point3 p[4];

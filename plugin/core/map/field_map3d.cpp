@@ -5,6 +5,7 @@
 #include <memory>
 #include <vector>
 
+#include "buffer_room.hpp"
 #include "errors.hpp"
 #include "fe/lattice3d.hpp"
 #include "parallel/on_threads.hpp"
@@ -87,6 +88,7 @@ FieldMap3::FieldMap3(const Mesh3& solid, const Basis3* const space[3], const dou
       if (!poly.shared(k)) corner_exact_[k] = 0;
   }
   monomial_coef_.reset(new double[static_cast<size_t>(size) * 3 * nm]);
+  advise_huge_pages(monomial_coef_.get(), sizeof(double) * static_cast<size_t>(size) * 3 * nm);
   on_shares(threads_for(threads, size, 8192), size, [&](int first, int last) {
     for (int a = 0; a < 3; ++a)
       field_monomials(*part_[a].space, part_[a].coef, *used[a], nm, first, last, monomial_coef_.get(),

@@ -20,7 +20,10 @@ void RowSum::start(int rows, int writers) {
   const size_t expected = static_cast<size_t>(rows) / writers + rows / 4 + 64;
   for (int w = 0; w < writers; ++w) {
     writers_[w].chunks.clear();
-    if (writers_[w].chunks.capacity() < expected) writers_[w].chunks.reserve(expected);
+    if (writers_[w].chunks.capacity() < expected) {
+      writers_[w].chunks.reserve(expected);
+      advise_huge_pages(writers_[w].chunks.data(), expected * sizeof(Chunk));
+    }
     spills_[w].clear();
   }
 }
