@@ -1,8 +1,12 @@
 // Buffers kept from one call to the next.
 #pragma once
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <memory>
+#include <new>
+#include <type_traits>
 #include <vector>
 
 #if defined(__linux__)
@@ -24,6 +28,31 @@ inline void advise_huge_pages(const void* p, size_t bytes) {
   (void)p;
   (void)bytes;
 #endif
+}
+
+// An array of n values left uninitialized (each written before it is read), whose memory is aligned on 2 MiB
+// and advised as above when it spans at least one such page, so that all of it can be backed by huge pages
+// (a vector's or new[]'s memory starts at a 4 KiB page plus a header: a 2 MiB page fits in it or not by
+// chance). T trivially copyable; freed with std::free.
+struct FreeDeleter {
+  void operator()(void* p) const { std::free(p); }
+};
+template <class T>
+using HugeBuffer = std::unique_ptr<T[], FreeDeleter>;
+
+template <class T>
+HugeBuffer<T> huge_buffer(size_t n) {
+  static_assert(std::is_trivially_copyable<T>::value, "a raw buffer of plain values");
+  constexpr size_t kHuge = size_t{2} << 20;
+  const size_t bytes = std::max<size_t>(n * sizeof(T), 1);
+  void* p = nullptr;
+  if (bytes >= kHuge) {
+    p = std::aligned_alloc(kHuge, (bytes + kHuge - 1) / kHuge * kHuge);  // a multiple of the alignment
+    if (p) advise_huge_pages(p, bytes);
+  }
+  if (!p) p = std::malloc(bytes);
+  if (!p) throw std::bad_alloc();
+  return HugeBuffer<T>(static_cast<T*>(p));
 }
 
 // Room for n elements, with a quarter more when it must grow: a count that creeps up from call to call

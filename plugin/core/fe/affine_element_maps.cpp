@@ -5,8 +5,7 @@
 namespace dlmfsi {
 
 AffineElementMaps::AffineElementMaps(const Mesh& mesh)
-    : mesh_(mesh), inverse_jacobian_(new double[4 * static_cast<size_t>(mesh.size())]) {
-  advise_huge_pages(inverse_jacobian_.get(), sizeof(double) * 4 * static_cast<size_t>(mesh.size()));
+    : mesh_(mesh), inverse_jacobian_(huge_buffer<double>(4 * static_cast<size_t>(mesh.size()))) {
   for (int k = 0; k < mesh.size(); ++k) {
     // [e1 e2]^-1 = [[e2.y, -e2.x], [-e1.y, e1.x]] / det [e1 e2]
     Point p[3];

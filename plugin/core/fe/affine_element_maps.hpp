@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <memory>
 
+#include "buffer_room.hpp"
 #include "mesh/mesh.hpp"
 
 namespace dlmfsi {
@@ -34,7 +35,7 @@ class AffineElementMaps {
 
  private:
   const Mesh& mesh_;
-  std::unique_ptr<double[]> inverse_jacobian_;  // 4 entries per element, each written by the constructor
+  HugeBuffer<double> inverse_jacobian_;  // 4 entries per element, each written by the constructor
 };
 
 }  // namespace dlmfsi

@@ -54,8 +54,7 @@ FieldMap::FieldMap(const Mesh& solid, const Basis& space_x, const double* coef_x
     }
   }
   const int nm = monomial_count(degree_), size = solid.size();
-  monomial_coef_.reset(new double[static_cast<size_t>(size) * 2 * nm]);
-  advise_huge_pages(monomial_coef_.get(), sizeof(double) * static_cast<size_t>(size) * 2 * nm);
+  monomial_coef_ = huge_buffer<double>(static_cast<size_t>(size) * 2 * nm);
   // X and Y on one space, component and fit (two functions of one scalar space): both in one pass.
   const bool together = fit[0] == fit[1] && part_[0].space == part_[1].space && part_[0].comp == part_[1].comp;
   const double* values[2] = {part_[0].coef, part_[1].coef};

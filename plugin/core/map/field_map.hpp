@@ -2,6 +2,7 @@
 #pragma once
 #include <memory>
 
+#include "buffer_room.hpp"
 #include "fe/basis.hpp"
 #include "map/solid_map.hpp"
 #include "mesh/mesh.hpp"
@@ -39,7 +40,7 @@ class FieldMap : public SolidMap {
   };
   Part part_[2];
   int degree_ = -1;
-  std::unique_ptr<double[]> monomial_coef_;  // per triangle: x then y coefficients
+  HugeBuffer<double> monomial_coef_;  // per triangle: x then y coefficients
 };
 
 }  // namespace dlmfsi

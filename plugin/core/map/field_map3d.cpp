@@ -87,8 +87,7 @@ FieldMap3::FieldMap3(const Mesh3& solid, const Basis3* const space[3], const dou
     for (int k = 0; k < size; ++k)
       if (!poly.shared(k)) corner_exact_[k] = 0;
   }
-  monomial_coef_.reset(new double[static_cast<size_t>(size) * 3 * nm]);
-  advise_huge_pages(monomial_coef_.get(), sizeof(double) * static_cast<size_t>(size) * 3 * nm);
+  monomial_coef_ = huge_buffer<double>(static_cast<size_t>(size) * 3 * nm);
   on_shares(threads_for(threads, size, 8192), size, [&](int first, int last) {
     for (int a = 0; a < 3; ++a)
       field_monomials(*part_[a].space, part_[a].coef, *used[a], nm, first, last, monomial_coef_.get(),

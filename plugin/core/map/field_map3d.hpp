@@ -3,6 +3,7 @@
 #include <memory>
 #include <vector>
 
+#include "buffer_room.hpp"
 #include "fe/basis.hpp"
 #include "mesh/mesh3d.hpp"
 #include "fe/polynomial_basis3d.hpp"
@@ -35,7 +36,7 @@ class FieldMap3 : public SolidMap3 {
   };
   Part part_[3];
   int degree_ = -1;
-  std::unique_ptr<double[]> monomial_coef_;  // per tetrahedron: x, y then z coefficients
+  HugeBuffer<double> monomial_coef_;  // per tetrahedron: x, y then z coefficients
   // Per part and corner of the reference tetrahedron: the local dof whose basis function is 1 there while
   // the part's others are 0 (a Lagrange dof at the vertex), or -1; valid on tetrahedra of the shared fit.
   int corner_dof_[3][4];
