@@ -55,6 +55,29 @@ HugeBuffer<T> huge_buffer(size_t n) {
   return HugeBuffer<T>(static_cast<T*>(p));
 }
 
+// A std::vector allocator that gives a HugeBuffer's memory (2 MiB-aligned, advised) to allocations of at
+// least 2 MiB and std::allocator's to the others.
+template <class T>
+struct BigAllocator {
+  using value_type = T;
+  BigAllocator() = default;
+  template <class U>
+  BigAllocator(const BigAllocator<U>&) {}
+  static constexpr size_t kBig = size_t{2} << 20;
+  T* allocate(size_t n) {
+    if (n * sizeof(T) < kBig) return std::allocator<T>().allocate(n);
+    return huge_buffer<T>(n).release();
+  }
+  void deallocate(T* p, size_t n) {
+    if (n * sizeof(T) < kBig) std::allocator<T>().deallocate(p, n);
+    else std::free(p);
+  }
+  template <class U>
+  bool operator==(const BigAllocator<U>&) const { return true; }
+  template <class U>
+  bool operator!=(const BigAllocator<U>&) const { return false; }
+};
+
 // Room for n elements, with a quarter more when it must grow: a count that creeps up from call to call
 // (a few more pieces as the map moves) does not reallocate every time.
 template <class T>

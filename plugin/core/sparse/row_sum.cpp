@@ -20,10 +20,7 @@ void RowSum::start(int rows, int writers) {
   const size_t expected = static_cast<size_t>(rows) / writers + rows / 4 + 64;
   for (int w = 0; w < writers; ++w) {
     writers_[w].chunks.clear();
-    if (writers_[w].chunks.capacity() < expected) {
-      writers_[w].chunks.reserve(expected);
-      advise_huge_pages(writers_[w].chunks.data(), expected * sizeof(Chunk));
-    }
+    if (writers_[w].chunks.capacity() < expected) writers_[w].chunks.reserve(expected);
     spills_[w].clear();
   }
 }
@@ -38,7 +35,7 @@ int RowSum::new_chunk(Writer& writer) {
 }
 
 void RowSum::append(int w, int row, int last, int col, double v) {
-  std::vector<Chunk>& chunks = writers_[w].chunks;
+  Chunks& chunks = writers_[w].chunks;
   int& head = head_[row];
   const int first = head >> writer_bits_;
   const int count = chunks[first].count;
@@ -82,7 +79,7 @@ void RowSum::fill_row(int i, CsrMatrix& m, size_t at, const CompressedRows& spil
     std::copy(spilled.value.begin() + row_spill, spilled.value.begin() + row_spill + n, value);
     return;
   }
-  const std::vector<Chunk>& chunks = writers_[head & ((1 << writer_bits_) - 1)].chunks;
+  const Chunks& chunks = writers_[head & ((1 << writer_bits_) - 1)].chunks;
   const int count = chunks[head >> writer_bits_].count;
 #ifdef __SSE2__
   if (count <= kChunk) {  // one chunk (the usual row): each column placed at its rank

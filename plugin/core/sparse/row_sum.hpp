@@ -8,6 +8,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "buffer_room.hpp"
 #include "sparse/compressed_rows.hpp"
 #include "sparse/csr_matrix.hpp"
 
@@ -32,7 +33,7 @@ class RowSum {
   void add_row(int w, int row, const int* col, const double* v, int n) {
     int& head = head_[row];
     if (head == kNone) head = first_chunk(w);
-    std::vector<Chunk>& chunks = writers_[w].chunks;
+    Chunks& chunks = writers_[w].chunks;
     int e = 0;
     if (head >= 0) {
       Chunk& c = chunks[static_cast<std::size_t>(head >> writer_bits_)];
@@ -91,8 +92,9 @@ class RowSum {
     int count, next;
     double value[kChunk];
   };
+  using Chunks = std::vector<Chunk, BigAllocator<Chunk>>;  // a first call's fresh pages are huge ones
   struct alignas(64) Writer {  // a cache line each: writers taking chunks never write to one line
-    std::vector<Chunk> chunks;
+    Chunks chunks;
   };
   // A column new to the row (its last chunk `last`): in a free place, in a new chunk, or, the row full, the
   // row spilled.
