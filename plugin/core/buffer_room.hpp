@@ -78,10 +78,13 @@ struct BigAllocator {
   bool operator!=(const BigAllocator<U>&) const { return false; }
 };
 
+template <class T>
+using BigVector = std::vector<T, BigAllocator<T>>;
+
 // Room for n elements, with a quarter more when it must grow: a count that creeps up from call to call
 // (a few more pieces as the map moves) does not reallocate every time.
-template <class T>
-void room(std::vector<T>& v, size_t n) {
+template <class T, class Allocator>
+void room(std::vector<T, Allocator>& v, size_t n) {
   if (v.capacity() < n) {
     v.reserve(n + n / 4);
     advise_huge_pages(v.data(), v.capacity() * sizeof(T));

@@ -17,8 +17,8 @@ class CompressedRows {
  public:
   int first = 0, last = 0;
   std::vector<int> length;  // per row of the range
-  std::vector<int> column;
-  std::vector<double> value;
+  BigVector<int> column;  // as CsrMatrix's (the two are swapped)
+  BigVector<double> value;
 
   // Compresses the triplets of the count parts whose rows fall in the range (AllInRange: every triplet
   // given does, none to skip); linear in the number of triplets plus the sorts of each row's distinct

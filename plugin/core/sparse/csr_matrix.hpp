@@ -2,6 +2,7 @@
 #pragma once
 #include <vector>
 
+#include "buffer_room.hpp"
 #include "parallel/shares.hpp"
 
 namespace dlmfsi {
@@ -26,8 +27,8 @@ struct RowRanges {
 struct CsrMatrix {
   int rows = 0, cols = 0;
   std::vector<int> start;  // rows + 1 offsets
-  std::vector<int> column;
-  std::vector<double> value;
+  BigVector<int> column;  // (BigVector: buffer_room.hpp; a large matrix's fresh pages are huge ones)
+  BigVector<double> value;
   double at(int i, int j) const;  // 0 where there is no entry
 };
 
