@@ -1,4 +1,4 @@
-// Buffers kept from one call to the next.
+// Buffers kept from one call to the next, and large fresh buffers backed by huge pages.
 #pragma once
 #include <algorithm>
 #include <cstddef>
@@ -17,7 +17,8 @@ namespace dlmfsi {
 
 // Asks Linux to back the 2 MiB-aligned part of [p, p + bytes) with transparent huge pages as it is first
 // touched (honoured where THP is enabled or in madvise mode; a no-op otherwise): a fresh buffer's first writes
-// then fault once per 2 MiB instead of once per 4 KiB page, a cost that is a tenth of a first call's time.
+// then fault once per 2 MiB instead of once per 4 KiB page. A first call writes megabytes of fresh memory
+// (a 4 KiB fault cost 2.5 us on the virtual machine measured, 0.8 us per 4 KiB in huge pages).
 inline void advise_huge_pages(const void* p, size_t bytes) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   constexpr std::uintptr_t kHuge = std::uintptr_t{2} << 20;
@@ -44,6 +45,7 @@ template <class T>
 HugeBuffer<T> huge_buffer(size_t n) {
   static_assert(std::is_trivially_copyable<T>::value, "a raw buffer of plain values");
   constexpr size_t kHuge = size_t{2} << 20;
+  if (n > (SIZE_MAX - kHuge) / sizeof(T)) throw std::bad_alloc();
   const size_t bytes = std::max<size_t>(n * sizeof(T), 1);
   void* p = nullptr;
   if (bytes >= kHuge) {
