@@ -46,18 +46,6 @@ inline double power_of_two(int e) {
   return out;
 }
 
-// Do the nine doubles at p and q agree bit for bit (std::memcmp's test, without its library call)?
-inline bool same_bits(const double* p, const double* q) {
-  std::uint64_t differ = 0;
-  for (int i = 0; i < 9; ++i) {
-    std::uint64_t a, b;
-    std::memcpy(&a, p + i, sizeof a);
-    std::memcpy(&b, q + i, sizeof b);
-    differ |= a ^ b;
-  }
-  return differ == 0;
-}
-
 Moments moments(const Piece3& piece) {
   Moments out;
   const int apex = piece.apex();  // the triangulation's: every tetrahedron's first corner
@@ -103,17 +91,16 @@ Moments moments(const Piece3& piece) {
 
 }  // namespace
 
-const MomentIntegrator3::SolidTerms& MomentIntegrator3::solid_terms(const MappedTet& mt, Point3 xi) {
+void MomentIntegrator3::start(const ClippedImage3& image) {
+  const MappedTet& mt = image.tetrahedron;
   const double(&j)[3][3] = mt.affine_value.jac;
   SolidTerms& st = solid_terms_;
-  if (st.k == mt.k && same_bits(&st.jac[0][0], &j[0][0]) && st.det == mt.affine_det) return st;
-  st.k = mt.k;
-  std::memcpy(st.jac, j, sizeof st.jac);
-  // the gradients in s (degree <= 1: the same at every point); the values at xi are not kept
+  // the gradients in s (degree <= 1: the same at every point, here the reference origin's); the values there
+  // are not kept
   double values[kMaxFunctions];
-  integrand_.multiplier.evaluate_affine(mt.k, xi, values, st.gradient_s);
+  integrand_.multiplier.evaluate_affine(mt.k, Point3{}, values, st.gradient_s);
   const double* sg = st.gradient_s;
-  const double det = st.det = mt.affine_det;
+  const double det = mt.affine_det;
   st.mass = integrand_.c2 / det;
   const double cof[3][3] = {{j[1][1] * j[2][2] - j[1][2] * j[2][1], j[1][2] * j[2][0] - j[1][0] * j[2][2], j[1][0] * j[2][1] - j[1][1] * j[2][0]},
                             {j[0][2] * j[2][1] - j[0][1] * j[2][2], j[0][0] * j[2][2] - j[0][2] * j[2][0], j[0][1] * j[2][0] - j[0][0] * j[2][1]},
@@ -121,7 +108,6 @@ const MomentIntegrator3::SolidTerms& MomentIntegrator3::solid_terms(const Mapped
   for (int f = 0; f < multiplier_functions_; ++f)
     for (int a = 0; a < 3; ++a)  // (J^-T g)_a = sum_b (J^-1)_ba g_b, J^-1 = cof^T / det
       st.gradient_y[3 * f + a] = (cof[a][0] * sg[3 * f] + cof[a][1] * sg[3 * f + 1] + cof[a][2] * sg[3 * f + 2]) / det;
-  return st;
 }
 
 bool MomentIntegrator3::applies(const Integrand3& integrand) {
@@ -144,7 +130,7 @@ double MomentIntegrator3::integrate(const ClippedImage3& image, int kf, const Pi
   // the centroid relative to image.origin, as the piece
   integrand_.fluid.evaluate_affine(kf, integrand_.fluid.to_reference(kf, mo.centroid, image.origin), fv, fg);
   const Point3 xi = mt.affine_reference(mo.centroid, image.origin);
-  const SolidTerms& st = solid_terms(mt, xi);
+  const SolidTerms& st = solid_terms_;  // start()'s
   const double* sg = st.gradient_s;
   // the multiplier's values at the centroid (its gradients are kept per tetrahedron)
   integrand_.multiplier.values_affine(mt.k, xi, sv);

@@ -18,20 +18,17 @@ class MomentIntegrator3 : public PieceIntegrator3 {
   static bool applies(const Integrand3& integrand);
 
   MomentIntegrator3(const Integrand3& integrand, CouplingReport& counts);
+  // The image's (affine) tetrahedron's terms, SolidTerms.
+  void start(const ClippedImage3& image) override;
   double integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) override;
 
  private:
-  // What a piece's block takes from its solid tetrahedron alone, kept from the last piece: c2 / det and
-  // each multiplier function's gradient in y, J^-T grad_s psi (constant on the tetrahedron: degree <= 1),
-  // for the tetrahedron k with jacobian jac (the same values, bit for bit, as formed for each piece).
+  // What a piece's block takes from its solid tetrahedron alone, formed by start(): c2 / det and each
+  // multiplier function's gradient in s and in y, J^-T grad_s psi (constant on the tetrahedron: degree <= 1).
   struct SolidTerms {
-    int k = -1;
-    double jac[3][3] = {}, det = 0, mass = 0;
+    double mass = 0;
     double gradient_s[3 * kMaxFunctions], gradient_y[3 * kMaxFunctions];
   };
-  // The terms of mt, formed when mt is not the last piece's tetrahedron (its multiplier functions' gradients
-  // in s evaluated at xi, a point of it).
-  const SolidTerms& solid_terms(const MappedTet& mt, Point3 xi);
 
   const Integrand3& integrand_;
   CouplingReport& counts_;

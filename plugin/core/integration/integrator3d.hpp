@@ -46,6 +46,9 @@ struct ClippedImage3 {
 class PieceIntegrator3 {
  public:
   virtual ~PieceIntegrator3() = default;
+  // Before the pieces of an image (the caller calls it): what does not change from piece to piece may be
+  // formed here, once.
+  virtual void start(const ClippedImage3& /*image*/) {}
   virtual double integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) = 0;
 };
 using TetrahedronIntegrator = ElementIntegratorOf<MappedTet>;
