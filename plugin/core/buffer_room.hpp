@@ -87,10 +87,7 @@ using BigVector = std::vector<T, BigAllocator<T>>;
 // (a few more pieces as the map moves) does not reallocate every time.
 template <class T, class Allocator>
 void room(std::vector<T, Allocator>& v, size_t n) {
-  if (v.capacity() < n) {
-    v.reserve(n + n / 4);
-    advise_huge_pages(v.data(), v.capacity() * sizeof(T));
-  }
+  if (v.capacity() < n) v.reserve(n + n / 4);
 }
 
 // The same for values that are each written before they are read: the room is left uninitialized (a vector's

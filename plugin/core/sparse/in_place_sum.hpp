@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "buffer_room.hpp"
 #include "sparse/csr_matrix.hpp"
 
 namespace dlmfsi {
@@ -72,7 +73,7 @@ class InPlaceSum {
 
  private:
   CsrMatrix* m_ = nullptr;
-  std::vector<Flag> flag_;  // per entry of m: set in this summation?
+  BigVector<Flag> flag_;  // per entry of m: set in this summation? (buffer_room.hpp, as the matrix's arrays)
   std::vector<char> later_;  // per row of m: summed later?
 };
 
