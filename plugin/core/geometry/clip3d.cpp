@@ -619,20 +619,21 @@ class SimplePolytope {
   // max(e_o(u), e_o(x)) + dt |d_o(x) - d_o(u)| + 4 eps (|d_o(u)| + |d_o(x)|), dt >= |t - t_exact|:
   // |t - t_exact| <= (e(u) + e(x)) / (d(u) - d(x)) to first order (both ends' values within their bounds),
   // plus 3 eps for t's own rounding.
-  // The cut by plane j; the values and bounds carried to the new vertices are those of the later planes
-  // (j a template argument: a fixed loop over them).
+  // The cut by plane j; the values and bounds carried to the new vertices are those of the planes that cut
+  // later (bit m of later, m > j; j a template argument: a fixed loop over the planes after it). The others'
+  // are left unset: no cut reads them.
   // inside4, outside4: a's vertices (0-3) certainly inside and outside plane j, already known (bit i).
-  Outcome cut(int j, unsigned inside4, unsigned outside4) {
+  Outcome cut(int j, unsigned inside4, unsigned outside4, unsigned later) {
     switch (j) {
-      case 0: return cut_by<0>(inside4, outside4);
-      case 1: return cut_by<1>(inside4, outside4);
-      case 2: return cut_by<2>(inside4, outside4);
-      default: return cut_by<3>(inside4, outside4);
+      case 0: return cut_by<0>(inside4, outside4, later);
+      case 1: return cut_by<1>(inside4, outside4, later);
+      case 2: return cut_by<2>(inside4, outside4, later);
+      default: return cut_by<3>(inside4, outside4, later);
     }
   }
 
   template <int j>
-  Outcome cut_by(unsigned inside4, unsigned outside4) {
+  Outcome cut_by(unsigned inside4, unsigned outside4, unsigned later) {
     unsigned inside = inside4 & live_, outside = outside4 & live_;  // certified
     for (unsigned live = live_ & ~0xFu; live != 0; live &= live - 1) {  // the crossings made so far
       const int k = __builtin_ctz(live);
@@ -660,6 +661,7 @@ class SimplePolytope {
         w.y = crossing.y;
         w.z = crossing.z;
         for (int m = j + 1; m < 4; ++m) {
+          if (!(later >> m & 1u)) continue;
           const double change = o.d[m] - u.d[m];
           w.d[m] = u.d[m] + t * change;
           w.e[m] = (std::max(u.e[m], o.e[m]) + dt * std::fabs(change) +
@@ -821,7 +823,7 @@ bool filtered_piece(const Point3 a[4], const Point3 b[4], const TetNormals& b_no
   for (int j = 0; j < 4; ++j) {
     if (!(beyond >> j & 1u)) continue;
     const SimplePolytope::Outcome o =
-        polytope.cut(j, inner >> (4 * j) & 0xFu, outer >> (4 * j) & 0xFu);
+        polytope.cut(j, inner >> (4 * j) & 0xFu, outer >> (4 * j) & 0xFu, beyond & ~((2u << j) - 1));
     if (o == SimplePolytope::kEmpty) return true;
     if (o == SimplePolytope::kUncertain) return false;
   }
