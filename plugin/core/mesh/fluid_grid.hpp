@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <mutex>
 #include <vector>
 
 namespace dlmfsi {
 
 // The grid over the elements' bounding boxes, about one element per cell: the fallback for point location
-// and for elements whose search cannot start from an interior point. Elements describes the mesh
+// and for elements whose search cannot start from an interior point. Built on first use (a solid inside the
+// fluid never asks it), once, also when several threads ask at the same time. Elements describes the mesh
 // (Triangles in fluid_search.hpp, Tetrahedra in fluid_search3d.hpp): its Mesh and Point types, kDim,
 // kCorners, coordinate(p, a) and cells_per_axis.
 template <class Elements>
@@ -18,7 +20,7 @@ class FluidGridOf {
   using MeshT = typename Elements::Mesh;
   using PointT = typename Elements::Point;
 
-  explicit FluidGridOf(const MeshT& fluid);
+  explicit FluidGridOf(const MeshT& fluid) : fluid_(fluid) {}
   const MeshT& fluid() const { return fluid_; }
 
   // Calls f(k) for every fluid element whose bounding box meets the box [lo, hi] (with repetitions).
@@ -30,6 +32,7 @@ class FluidGridOf {
   // The same for the bounding box of the n points p.
   template <class F>
   void for_each_near(const PointT* p, int n, F&& f) const {
+    std::call_once(built_, [this] { build(); });
     int i0[D], i1[D];
     if (!cells_of(p, n, i0, i1)) return;
     for_each_cell(i0, i1, [&](std::size_t c) {
@@ -41,6 +44,8 @@ class FluidGridOf {
   // The range of cells [i0, i1] (per axis) that the bounding box of the n points p meets; false when it
   // misses the grid.
   bool cells_of(const PointT* p, int n, int* i0, int* i1) const;
+  // The cells and their elements (what the constructor would build; mutable members, set once).
+  void build() const;
   // Calls f(c) for the cells of the range [i0, i1], the first axis running fastest.
   template <class F>
   void for_each_cell(const int* i0, const int* i1, F&& f) const {
@@ -61,13 +66,15 @@ class FluidGridOf {
   }
 
   const MeshT& fluid_;
-  double lo_[D] = {}, hi_[D] = {}, inv_[D] = {};
-  int n_[D] = {};
-  std::vector<int> start_, items_;
+  mutable std::once_flag built_;
+  mutable double lo_[D] = {}, hi_[D] = {}, inv_[D] = {};
+  mutable int n_[D] = {};
+  mutable std::vector<int> start_, items_;
 };
 
 template <class Elements>
-FluidGridOf<Elements>::FluidGridOf(const MeshT& fluid) : fluid_(fluid) {
+void FluidGridOf<Elements>::build() const {
+  const MeshT& fluid = fluid_;
   const int nt = fluid.size();
   std::fill(n_, n_ + D, 1);
   if (nt == 0) {

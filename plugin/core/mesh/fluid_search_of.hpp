@@ -41,7 +41,8 @@ class FluidSearchOf {
   using PieceT = typename Elements::Piece;
 
   explicit FluidSearchOf(const FluidGridOf<Elements>& grid)
-      : grid_(grid), fluid_(grid.fluid()), stamp_of_(grid.fluid().size(), 0u) {
+      : grid_(grid), fluid_(grid.fluid()), max_walk_steps_(Elements::max_walk_steps(fluid_.size())),
+        stamp_of_(grid.fluid().size(), 0u) {
     if constexpr (Planes::kept) {
       // formed on first use (a solid often meets a small part of the fluid); new[] leaves them unset
       planes_.reset(new typename Planes::type[static_cast<std::size_t>(fluid_.size())]);
@@ -126,6 +127,7 @@ class FluidSearchOf {
   }
   const FluidGridOf<Elements>& grid_;
   const MeshT& fluid_;
+  int max_walk_steps_;  // locate's bound, Elements::max_walk_steps of the fluid's size
   std::vector<unsigned> stamp_of_;
   unsigned stamp_ = 0;
   std::vector<int> queue_;
@@ -143,8 +145,7 @@ int FluidSearchOf<Elements>::locate(PointT p, int hint) const {
     // Visibility walk: step across a facet that has p strictly on its far side; the facet tried first
     // rotates so that the walk cannot cycle on non-Delaunay meshes for long (bounded anyway).
     int k = hint;
-    const int max_steps = Elements::max_walk_steps(m.size());
-    for (int step = 0; step < max_steps; ++step) {
+    for (int step = 0; step < max_walk_steps_; ++step) {
       int next = -2;
       for (int r = 0; r < kCorners; ++r) {
         const int i = (r + step) % kCorners;
