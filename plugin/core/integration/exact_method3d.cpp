@@ -20,19 +20,31 @@ namespace {
 using Tet = std::array<Point3, 4>;
 }  // namespace
 
-ExactMethod3::ExactMethod3(const FluidSide3& fluid, FluidSearch3& search, int product_degree, int qforder,
+ExactMethod3::ExactMethod3(const FluidSide3& fluid, FluidSearch3& search, const Integrand3& integrand, int qforder,
                            int subdivide, std::unique_ptr<PieceIntegrator3> general,
                            std::unique_ptr<PieceIntegrator3> affine, CouplingReport& counts)
-    : fluid_(fluid), search_(search), product_degree_(product_degree), qforder_(qforder), subdivide_(subdivide),
-      general_(std::move(general)), affine_(std::move(affine)), counts_(counts) {}
+    : fluid_(fluid), search_(search), fluid_degree_(integrand.fluid_degree),
+      multiplier_degree_(integrand.multiplier_degree), product_degree_(integrand.product_degree), qforder_(qforder),
+      subdivide_(subdivide), general_(std::move(general)), affine_(std::move(affine)), counts_(counts) {}
 
 double ExactMethod3::integrate(const MappedTet& mt, LocalBlock& block) {
   // Curved faces: the reference tetrahedron refined, corners mapped by the true map; on each
   // sub-tetrahedron the jacobian varies 2^level times less.
   const int level = mt.planar ? 0 : (subdivide_ >= 0 ? subdivide_ : 2);
-  const ClippedImage3 image{mt, rule_degree(mt, std::ldexp(1.0, -level), !mt.planar)};
+  // On the reference side where the map and both bases are polynomial: a rule exact for psi (phi o X).
+  const int map_degree = mt.fitted_degree();
+  const bool chord = !mt.planar && map_degree >= 1 && fluid_degree_ >= 0 && multiplier_degree_ >= 0;
+  int degree;
+  if (chord) {
+    degree = qforder_ >= 0 ? qforder_ : std::min(40, multiplier_degree_ + fluid_degree_ * map_degree);
+    counts_.curved_rule_degree = std::max(counts_.curved_rule_degree, degree);
+  } else {
+    degree = rule_degree(mt, std::ldexp(1.0, -level), !mt.planar);
+  }
+  ClippedImage3 image{mt, degree};
   if (mt.affine) return clip(image, mt.image, block);
   if (mt.planar) return clip_or_split(image, reference_subdivision(0)[0].data(), mt.image, block);
+  image.chord = chord;
   double outside = 0;
   for (const Tet& sub : reference_subdivision(level)) {
     Point3 img[4];
@@ -41,7 +53,8 @@ double ExactMethod3::integrate(const MappedTet& mt, LocalBlock& block) {
       if (!std::isfinite(img[i].x) || !std::isfinite(img[i].y) || !std::isfinite(img[i].z))
         throw Error("the map is NaN or Inf inside solid tetrahedron " + std::to_string(mt.k));
     }
-    const ClippedImage3 part{mt, image.degree, sub.data(), img};
+    ClippedImage3 part{mt, image.degree, sub.data(), img};
+    part.chord = chord;
     outside += clip_or_split(part, sub.data(), img, block);
   }
   return outside;
@@ -65,7 +78,9 @@ double ExactMethod3::clip_or_split(const ClippedImage3& image, const Point3 xi[4
   // of a curved image: the same scale).
   double outside = 0;
   for (const MapPart3& part : parts_) {
-    const ClippedImage3 piece{mt, part_rule_degree(part.nonlinearity, !mt.planar), part.xi, part.y};
+    ClippedImage3 piece{mt, image.chord ? image.degree : part_rule_degree(part.nonlinearity, !mt.planar), part.xi,
+                        part.y};
+    piece.chord = image.chord;
     outside += clip(piece, part.y, block);
   }
   return outside;

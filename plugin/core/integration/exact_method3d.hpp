@@ -3,11 +3,19 @@
 //   int_T f(s) ds = int_{X(T)} f(X^-1(y)) |det grad X(X^-1(y))|^-1 dy,
 // by a PieceIntegrator3: with a rule exact for the product's degree where X is affine on T, otherwise with
 // Newton's pull-back and a rule of degree qforder or, by default, one chosen from the map's nonlinearity.
-// Images whose faces are planar (P1b maps) are clipped whole; curved ones (P2 maps) are replaced by the
-// images of the 8^subdivide tetrahedra of the refined reference tetrahedron (default subdivide 2). A
-// straight image (or sub-tetrahedron) on which the map is far from affine, near a fold, is split in fluid
-// coordinates into nearly affine parts (split3d.hpp), each with the rule of its own nonlinearity.
-// The volume outside the fluid mesh is the image's volume less the pieces'.
+// Images whose faces are planar (P1b maps) are clipped whole. Curved ones (P2 maps) are replaced by the
+// images of the 8^subdivide tetrahedra T_i of the refined reference tetrahedron (default subdivide 2), each
+// straight image A_i(T_i) (A_i the affine interpolant of X at T_i's corners) clipped against the fluid; with
+// polynomial bases and map the pieces are integrated on the reference side (ClippedImage3::chord):
+//   int_T f(s) ds = sum_i sum_K int_{A_i^-1(A_i(T_i) ∩ K)} psi(s) phi_K(X(s)) ds,
+// the preimages tiling T exactly and the integrand a polynomial of degree m + f d (multiplier, fluid, map),
+// integrated exactly. Only which fluid tetrahedron's polynomial is used where differs from the exact
+// integral: in the band between A_i^-1 and X^-1 of a fluid face, of width delta = O(h_i^2) (h_i: T_i's
+// size), so the error is 0 for a fluid field polynomial over the image (the same polynomial on every K it
+// meets), O(delta^2) per unit face area for a continuous one, O(delta) where it jumps. A straight image (or
+// sub-tetrahedron) on which the map is far from affine, near a fold, is split in fluid coordinates into
+// nearly affine parts (split3d.hpp), each with the rule of its own nonlinearity (or, on the reference side,
+// the same polynomial degree). The volume outside the fluid mesh is the image's volume less the pieces'.
 #pragma once
 #include <memory>
 #include <utility>
@@ -22,7 +30,7 @@ class ExactMethod3 : public TetrahedronIntegrator {
  public:
   // search: on fluid's grid. general integrates the pieces, except those of affine images when affine is
   // given. qforder, subdivide: the options (-1 automatic).
-  ExactMethod3(const FluidSide3& fluid, FluidSearch3& search, int product_degree, int qforder, int subdivide,
+  ExactMethod3(const FluidSide3& fluid, FluidSearch3& search, const Integrand3& integrand, int qforder, int subdivide,
                std::unique_ptr<PieceIntegrator3> general, std::unique_ptr<PieceIntegrator3> affine,
                CouplingReport& counts);
   double integrate(const MappedTet& mt, LocalBlock& block) override;
@@ -62,7 +70,8 @@ class ExactMethod3 : public TetrahedronIntegrator {
   const FluidSide3& fluid_;
   FluidSearch3& search_;
   int hint_ = 0;  // a fluid tetrahedron near the last image, where the search starts
-  int product_degree_, qforder_, subdivide_;
+  // the bases' degrees (the integrand's: -1 when not polynomial) and the product's
+  int fluid_degree_, multiplier_degree_, product_degree_, qforder_, subdivide_;
   std::unique_ptr<PieceIntegrator3> general_, affine_;
   CouplingReport& counts_;
 };

@@ -63,6 +63,7 @@ void PointIntegrator3::add_gathered(const MappedTet& mt, int kf, LocalBlock& blo
 }
 
 double PointIntegrator3::gather(const ClippedImage3& image, int kf, const Piece3& piece) {
+  if (image.chord) return gather_reference_side(image, kf, piece);
   const MappedTet& mt = image.tetrahedron;
   const auto& rule = tetrahedron_rule(image.degree);
   Point3 xi_corner[Piece3::kMaxVertices];
@@ -91,6 +92,36 @@ double PointIntegrator3::gather(const ClippedImage3& image, int kf, const Piece3
       eta_.push_back(integrand_.fluid.to_reference(kf, y, image.origin));  // y relative to it
       xi_.push_back(xi);
       weight_.push_back(vol * rp.weight / det);
+    }
+  });
+  return volume;
+}
+
+double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int kf, const Piece3& piece) {
+  const MappedTet& mt = image.tetrahedron;
+  const auto& rule = tetrahedron_rule(image.degree);
+  // the piece's corners taken back by the sub-tetrahedron's affine interpolant: its tetrahedra's preimages
+  Point3 xi_corner[Piece3::kMaxVertices];
+  for (int v = 0; v < piece.n; ++v) xi_corner[v] = image.guess(piece.v[v]);
+  // ds = det [solid edges] dxi
+  const double solid_det = volume6(mt.solid[0], mt.solid[1], mt.solid[2], mt.solid[3]);
+  clear_points();
+  double volume = 0;
+  MapValue3 mv;
+  piece.for_each_tetrahedron_index([&](int i0, int i1, int i2, int i3) {
+    volume += std::fabs(volume6(piece.v[i0], piece.v[i1], piece.v[i2], piece.v[i3])) / 6;
+    const Point3 xt[4] = {xi_corner[i0], xi_corner[i1], xi_corner[i2], xi_corner[i3]};
+    const double measure = std::fabs(volume6(xt[0], xt[1], xt[2], xt[3])) / 6 * solid_det;
+    for (const RulePoint3& rp : rule) {
+      const Point3 xi = from_reference(xt, rp.xi);
+      mv = mt.at(xi);
+      if (!(det3(mv.jac) > 0)) throw Error("the map folds solid tetrahedron " + std::to_string(mt.k));
+      std::array<double, 9>& jac = jac_.emplace_back();
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) jac[3 * a + b] = mv.jac[a][b];
+      eta_.push_back(integrand_.fluid.to_reference(kf, mv.x, image.origin));
+      xi_.push_back(xi);
+      weight_.push_back(measure * rp.weight);
     }
   });
   return volume;

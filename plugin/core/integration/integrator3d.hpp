@@ -35,6 +35,11 @@ struct ClippedImage3 {
   const Point3* sub_xi = nullptr;
   const Point3* sub_y = nullptr;
   Point3 origin = {};  // nonzero only on affine tetrahedra (Newton's pull-back works in absolute coordinates)
+  // Integrate on the reference side (a sub-tetrahedron of a curved image, ExactMethod3): a point of a piece is
+  // taken back by the sub-tetrahedron's affine interpolant (guess(), no Newton) and the fluid is evaluated at
+  // the map's value there, so that the pieces' preimages tile the solid tetrahedron and the integrand is a
+  // polynomial in the reference coordinates.
+  bool chord = false;
   // Newton's first guess for the reference point of y_local (the pull-back itself on an affine tetrahedron).
   Point3 guess(Point3 y) const;
 };
