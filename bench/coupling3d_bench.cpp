@@ -8,9 +8,9 @@
 // dump: a file that receives the last call's matrix, one entry a line, "row column value" (%.17g), to compare
 // two builds' matrices entry by entry ("-": none). axis: the rotation's axis. About (1,1,1) the solid's diagonal
 // stays on the fluid's cube diagonals, which every cube's six tetrahedra share: many solid vertices on fluid
-// edges (the exact clip's degenerate cases); 1,2,3 is the generic case of tests/edp/bench/coupling3d_speed.edp. map: affine (the tests' AffineMap3, evaluated
-// through the generic fit) or field (the plugin's FieldMap3 of P1 values at the solid's vertices, built in each
-// call's timed part, as the plugin builds it on every call).
+// edges (the exact clip's degenerate cases); 1,2,3 is the generic case of tests/edp/bench/coupling3d_speed.edp.
+// map: affine (the tests' AffineMap3, evaluated through the generic fit) or field (the plugin's FieldMap3 of P1
+// values at the solid's vertices, built in each call's timed part, as the plugin builds it on every call).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -33,9 +33,9 @@ double ExactMethod3::integrate(const MappedTet& mt, LocalBlock& block) {
   const int level = mt.planar ? 0 : (subdivide_ >= 0 ? subdivide_ : 2);
   // On the reference side where the map and both bases are polynomial: a rule exact for psi (phi o X).
   const int map_degree = mt.fitted_degree();
-  const bool chord = !mt.planar && map_degree >= 1 && fluid_degree_ >= 0 && multiplier_degree_ >= 0;
+  const bool reference_side = !mt.planar && map_degree >= 1 && fluid_degree_ >= 0 && multiplier_degree_ >= 0;
   int degree;
-  if (chord) {
+  if (reference_side) {
     degree = qforder_ >= 0 ? qforder_ : std::min(40, multiplier_degree_ + fluid_degree_ * map_degree);
     counts_.curved_rule_degree = std::max(counts_.curved_rule_degree, degree);
   } else {
@@ -44,7 +44,7 @@ double ExactMethod3::integrate(const MappedTet& mt, LocalBlock& block) {
   ClippedImage3 image{mt, degree};
   if (mt.affine) return clip(image, mt.image, block);
   if (mt.planar) return clip_or_split(image, reference_subdivision(0)[0].data(), mt.image, block);
-  image.chord = chord;
+  image.reference_side = reference_side;
   double outside = 0;
   for (const Tet& sub : reference_subdivision(level)) {
     Point3 img[4];
@@ -54,7 +54,7 @@ double ExactMethod3::integrate(const MappedTet& mt, LocalBlock& block) {
         throw Error("the map is NaN or Inf inside solid tetrahedron " + std::to_string(mt.k));
     }
     ClippedImage3 part{mt, image.degree, sub.data(), img};
-    part.chord = chord;
+    part.reference_side = reference_side;
     outside += clip_or_split(part, sub.data(), img, block);
   }
   return outside;
@@ -78,9 +78,9 @@ double ExactMethod3::clip_or_split(const ClippedImage3& image, const Point3 xi[4
   // of a curved image: the same scale).
   double outside = 0;
   for (const MapPart3& part : parts_) {
-    ClippedImage3 piece{mt, image.chord ? image.degree : part_rule_degree(part.nonlinearity, !mt.planar), part.xi,
+    ClippedImage3 piece{mt, image.reference_side ? image.degree : part_rule_degree(part.nonlinearity, !mt.planar), part.xi,
                         part.y};
-    piece.chord = image.chord;
+    piece.reference_side = image.reference_side;
     outside += clip(piece, part.y, block);
   }
   return outside;

@@ -6,7 +6,7 @@
 // Images whose faces are planar (P1b maps) are clipped whole. Curved ones (P2 maps) are replaced by the
 // images of the 8^subdivide tetrahedra T_i of the refined reference tetrahedron (default subdivide 2), each
 // straight image A_i(T_i) (A_i the affine interpolant of X at T_i's corners) clipped against the fluid; with
-// polynomial bases and map the pieces are integrated on the reference side (ClippedImage3::chord):
+// polynomial bases and map the pieces are integrated on the reference side (ClippedImage3::reference_side):
 //   int_T f(s) ds = sum_i sum_K int_{A_i^-1(A_i(T_i) ∩ K)} psi(s) phi_K(X(s)) ds,
 // the preimages tiling T exactly and the integrand a polynomial of degree m + f d (multiplier, fluid, map),
 // integrated exactly. Only which fluid tetrahedron's polynomial is used where differs from the exact

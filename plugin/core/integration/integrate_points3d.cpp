@@ -63,7 +63,7 @@ void PointIntegrator3::add_gathered(const MappedTet& mt, int kf, LocalBlock& blo
 }
 
 double PointIntegrator3::gather(const ClippedImage3& image, int kf, const Piece3& piece) {
-  if (image.chord) return gather_reference_side(image, kf, piece);
+  if (image.reference_side) return gather_reference_side(image, kf, piece);
   const MappedTet& mt = image.tetrahedron;
   const auto& rule = tetrahedron_rule(image.degree);
   Point3 xi_corner[Piece3::kMaxVertices];

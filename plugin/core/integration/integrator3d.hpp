@@ -39,7 +39,7 @@ struct ClippedImage3 {
   // taken back by the sub-tetrahedron's affine interpolant (guess(), no Newton) and the fluid is evaluated at
   // the map's value there, so that the pieces' preimages tile the solid tetrahedron and the integrand is a
   // polynomial in the reference coordinates.
-  bool chord = false;
+  bool reference_side = false;
   // Newton's first guess for the reference point of y_local (the pull-back itself on an affine tetrahedron).
   Point3 guess(Point3 y) const;
 };
