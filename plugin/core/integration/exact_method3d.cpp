@@ -122,7 +122,11 @@ double ExactMethod3::clip(const ClippedImage3& image, const Point3 img[4], Local
   };
   // The image's volume: volume6 of the exactly translated corners equals volume6 of img bit for bit.
   const double volume = volume6(img[0], img[1], img[2], img[3]) / 6;
-  const Point3 origin = image.tetrahedron.affine && !image.sub_xi ? local_origin(img) : Point3();
+  // Local coordinates for affine images and for the straight images of the reference side (whose pieces go
+  // back through the affine interpolant and the map's displacement, both local); Newton's pull-back works in
+  // absolute coordinates.
+  const bool in_local = (image.tetrahedron.affine && !image.sub_xi) || image.reference_side;
+  const Point3 origin = in_local ? local_origin(img) : Point3();
   if (origin != Point3()) {
     const int hint = hint_;
     local_pieces_.clear();

@@ -105,6 +105,10 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
   for (int v = 0; v < piece.n; ++v) xi_corner[v] = image.guess(piece.v[v]);
   // ds = det [solid edges] dxi
   const double solid_det = volume6(mt.solid[0], mt.solid[1], mt.solid[2], mt.solid[3]);
+  // in local coordinates (image.origin nonzero): X(xi) - origin = (X(0) - origin) + displacement(xi), the first
+  // difference exact where the origin's coordinates are those of a nearby image point (Sterbenz)
+  const bool local = image.origin != Point3();
+  const Point3 shift = mt.origin() - image.origin;
   clear_points();
   double volume = 0;
   MapValue3 mv;
@@ -114,7 +118,14 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
     const double measure = std::fabs(volume6(xt[0], xt[1], xt[2], xt[3])) / 6 * solid_det;
     for (const RulePoint3& rp : rule) {
       const Point3 xi = from_reference(xt, rp.xi);
-      mv = mt.at(xi);
+      if (local) {  // X(xi) - origin from the map's displacement, to the image's own precision
+        Point3 d[3];
+        mt.displacement(xi, mv.x, d);
+        mv.x = mv.x + shift;
+        mt.set_jacobian(d, mv);
+      } else {
+        mv = mt.at(xi);
+      }
       if (!(det3(mv.jac) > 0)) throw Error("the map folds solid tetrahedron " + std::to_string(mt.k));
       std::array<double, 9>& jac = jac_.emplace_back();
       for (int a = 0; a < 3; ++a)
