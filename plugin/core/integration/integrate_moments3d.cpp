@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <vector>
 
 #include "sides/report.hpp"
 #include "sides/sides3d.hpp"
@@ -119,7 +120,31 @@ bool MomentIntegrator3::applies(const Integrand3& integrand) {
 
 MomentIntegrator3::MomentIntegrator3(const Integrand3& integrand, CouplingReport& counts)
     : integrand_(integrand), counts_(counts), fluid_functions_(static_cast<int>(integrand.fluid.functions().size())),
-      multiplier_functions_(static_cast<int>(integrand.multiplier.functions().size())) {}
+      multiplier_functions_(static_cast<int>(integrand.multiplier.functions().size())) {
+  const std::vector<int> in_order = {0, 1, 2, 3};
+  const ComponentPairs& pairs = integrand.pairs;
+  scalar_p1_mass_ = integrand.c1 == 0 && fluid_functions_ == 4 && multiplier_functions_ == 4 && pairs.size() == 1 &&
+                    pairs[0].fluid_functions == in_order && pairs[0].solid_functions == in_order;
+}
+
+double MomentIntegrator3::add_scalar_p1_mass(double volume, const double (&m)[3][3], double scale, const double* fv,
+                                             const double* fg, const double* sv, LocalBlock& block) {
+  const SolidTerms& st = solid_terms_;
+  const double mass = st.mass;
+  double sy[12];
+  for (int f = 0; f < 12; ++f) sy[f] = st.gradient_y[f] * scale;
+  const ComponentPair& pair = integrand_.pairs[0];
+  for (int a = 0; a < 4; ++a) {
+    const double* g = fg + 3 * a;
+    const double va = mass * volume * fv[a];
+    const double m0 = mass * (m[0][0] * g[0] + m[0][1] * g[1] + m[0][2] * g[2]) * scale;
+    const double m1 = mass * (m[1][0] * g[0] + m[1][1] * g[1] + m[1][2] * g[2]) * scale;
+    const double m2 = mass * (m[2][0] * g[0] + m[2][1] * g[1] + m[2][2] * g[2]) * scale;
+    double* col = block.column(pair.fluid_first + a) + pair.solid_first;
+    for (int b = 0; b < 4; ++b) col[b] += va * sv[b] + m0 * sy[3 * b] + m1 * sy[3 * b + 1] + m2 * sy[3 * b + 2];
+  }
+  return volume;
+}
 
 double MomentIntegrator3::integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) {
   const MappedTet& mt = image.tetrahedron;
@@ -137,6 +162,7 @@ double MomentIntegrator3::integrate(const ClippedImage3& image, int kf, const Pi
   const double(&j)[3][3] = mt.affine_value.jac;
   const double det = mt.affine_det, stiff = integrand_.c1 * mo.volume / det;
   const double mass = st.mass;
+  if (scalar_p1_mass_) return add_scalar_p1_mass(mo.volume, mo.m, mo.scale, fv, fg, sv, block);
   // per multiplier function: its gradient in y times 2^e
   double sy[3 * kMaxFunctions];
   for (int f = 0; f < 3 * multiplier_functions_; ++f) sy[f] = st.gradient_y[f] * mo.scale;

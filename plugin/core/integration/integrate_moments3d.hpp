@@ -30,9 +30,15 @@ class MomentIntegrator3 : public PieceIntegrator3 {
     double gradient_s[3 * kMaxFunctions], gradient_y[3 * kMaxFunctions];
   };
 
+  // The scalar P1 x P1 mass (one pair of four functions each, in order, c1 = 0): the block's terms in loops of
+  // fixed length, the same sums in the same order as the general loops of integrate (bit for bit).
+  double add_scalar_p1_mass(double volume, const double (&m)[3][3], double scale, const double* fv, const double* fg,
+                            const double* sv, LocalBlock& block);
+
   const Integrand3& integrand_;
   CouplingReport& counts_;
   int fluid_functions_, multiplier_functions_;
+  bool scalar_p1_mass_ = false;
   SolidTerms solid_terms_;
 };
 
