@@ -25,8 +25,8 @@ struct CouplingReport;
 using Integrand3 = IntegrandOf<Basis3, PolynomialBasis3>;
 
 // The straight image of a solid tetrahedron, or of one of the sub-tetrahedra of a curved one, clipped
-// against the fluid: its pieces are integrated in fluid coordinates relative to origin, y_local = y - origin
-// (0 except on affine tetrahedra far from it against their size, ExactMethod3; as ClippedImage in 2D).
+// against the fluid: its pieces are clipped in coordinates relative to origin, y_local = y - origin (0 except
+// on images far from it against their size, below; as ClippedImage in 2D).
 struct ClippedImage3 {
   const MappedTet& tetrahedron;
   int degree;  // of the rule on a piece: exact for the product where the map is affine
@@ -34,7 +34,9 @@ struct ClippedImage3 {
   // first guess (null for the whole image: MappedTet::affine_reference).
   const Point3* sub_xi = nullptr;
   const Point3* sub_y = nullptr;
-  Point3 origin = {};  // nonzero only on affine tetrahedra (Newton's pull-back works in absolute coordinates)
+  // Nonzero only on affine tetrahedra and on the reference side's sub-tetrahedra, far from the origin against
+  // their size (ExactMethod3::local_origin); Newton's pull-back works in absolute coordinates.
+  Point3 origin = {};
   // Integrate on the reference side (a sub-tetrahedron of a curved image, ExactMethod3): a point of a piece is
   // taken back by the sub-tetrahedron's affine interpolant (guess(), no Newton) and the fluid is evaluated at
   // the map's value there, so that the pieces' preimages tile the solid tetrahedron and the integrand is a
