@@ -28,12 +28,13 @@ ExactMethod3::ExactMethod3(const FluidSide3& fluid, FluidSearch3& search, const 
       subdivide_(subdivide), general_(std::move(general)), affine_(std::move(affine)), counts_(counts) {}
 
 double ExactMethod3::integrate(const MappedTet& mt, LocalBlock& block) {
-  // Curved faces: the reference tetrahedron refined, corners mapped by the true map; on each
-  // sub-tetrahedron the jacobian varies 2^level times less.
-  const int level = mt.planar ? 0 : (subdivide_ >= 0 ? subdivide_ : 2);
   // On the reference side where the map and both bases are polynomial: a rule exact for psi (phi o X).
   const int map_degree = mt.fitted_degree();
   const bool reference_side = !mt.planar && map_degree >= 1 && fluid_degree_ >= 0 && multiplier_degree_ >= 0;
+  // Curved faces: the reference tetrahedron refined, corners mapped by the true map; on each sub-tetrahedron
+  // the jacobian varies 2^level times less. By default 2 levels; 1 on the reference side, whose band term
+  // (PointIntegrator3::gather_reference_side) makes 1 level more accurate than 2 without it, at the same cost.
+  const int level = mt.planar ? 0 : (subdivide_ >= 0 ? subdivide_ : reference_side ? 1 : 2);
   int degree;
   if (reference_side) {
     degree = qforder_ >= 0 ? qforder_ : std::min(40, multiplier_degree_ + fluid_degree_ * map_degree);

@@ -4,15 +4,17 @@
 // by a PieceIntegrator3: with a rule exact for the product's degree where X is affine on T, otherwise with
 // Newton's pull-back and a rule of degree qforder or, by default, one chosen from the map's nonlinearity.
 // Images whose faces are planar (P1b maps) are clipped whole. Curved ones (P2 maps) are replaced by the
-// images of the 8^subdivide tetrahedra T_i of the refined reference tetrahedron (default subdivide 2), each
+// images of the 8^subdivide tetrahedra T_i of the refined reference tetrahedron (default subdivide 1 on the
+// reference side below, 2 otherwise), each
 // straight image A_i(T_i) (A_i the affine interpolant of X at T_i's corners) clipped against the fluid; with
 // polynomial bases and map the pieces are integrated on the reference side (ClippedImage3::reference_side):
 //   int_T f(s) ds = sum_i sum_K int_{A_i^-1(A_i(T_i) ∩ K)} psi(s) phi_K(X(s)) ds,
 // the preimages tiling T exactly and the integrand a polynomial of degree m + f d (multiplier, fluid, map),
 // integrated exactly. Only which fluid tetrahedron's polynomial is used where differs from the exact
 // integral: in the band between A_i^-1 and X^-1 of a fluid face, of width delta = O(h_i^2) (h_i: T_i's
-// size), so the error is 0 for a fluid field polynomial over the image (the same polynomial on every K it
-// meets), O(delta^2) per unit face area for a continuous one, O(delta) where it jumps. A straight image (or
+// size). The band is added to first order (PointIntegrator3::gather_reference_side), so the error is 0 for a
+// fluid field polynomial over the image (the same polynomial on every K it meets), O(delta^3) per unit face
+// area for a continuous one, O(delta^2) where it jumps (a gradient). A straight image (or
 // sub-tetrahedron) on which the map is far from affine, near a fold, is split in fluid coordinates into
 // nearly affine parts (split3d.hpp), each with the rule of its own nonlinearity (or, on the reference side,
 // the same polynomial degree). The volume outside the fluid mesh is the image's volume less the pieces'.

@@ -112,29 +112,85 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
   clear_points();
   double volume = 0;
   MapValue3 mv;
+  // X and dX/ds at xi (relative to the origin when local), and the point added with its weight
+  auto map_at = [&](Point3 xi) {
+    if (local) {  // X(xi) - origin from the map's displacement, to the image's own precision
+      Point3 d[3];
+      mt.displacement(xi, mv.x, d);
+      mv.x = mv.x + shift;
+      mt.set_jacobian(d, mv);
+    } else {
+      mv = mt.at(xi);
+    }
+    if (!(det3(mv.jac) > 0)) throw Error("the map folds solid tetrahedron " + std::to_string(mt.k));
+  };
+  auto add_point = [&](Point3 xi, double weight) {
+    std::array<double, 9>& jac = jac_.emplace_back();
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) jac[3 * a + b] = mv.jac[a][b];
+    eta_.push_back(integrand_.fluid.to_reference(kf, mv.x, image.origin));
+    xi_.push_back(xi);
+    weight_.push_back(weight);
+  };
   piece.for_each_tetrahedron_index([&](int i0, int i1, int i2, int i3) {
     volume += std::fabs(volume6(piece.v[i0], piece.v[i1], piece.v[i2], piece.v[i3])) / 6;
     const Point3 xt[4] = {xi_corner[i0], xi_corner[i1], xi_corner[i2], xi_corner[i3]};
     const double measure = std::fabs(volume6(xt[0], xt[1], xt[2], xt[3])) / 6 * solid_det;
     for (const RulePoint3& rp : rule) {
       const Point3 xi = from_reference(xt, rp.xi);
-      if (local) {  // X(xi) - origin from the map's displacement, to the image's own precision
-        Point3 d[3];
-        mt.displacement(xi, mv.x, d);
-        mv.x = mv.x + shift;
-        mt.set_jacobian(d, mv);
-      } else {
-        mv = mt.at(xi);
-      }
-      if (!(det3(mv.jac) > 0)) throw Error("the map folds solid tetrahedron " + std::to_string(mt.k));
-      std::array<double, 9>& jac = jac_.emplace_back();
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) jac[3 * a + b] = mv.jac[a][b];
-      eta_.push_back(integrand_.fluid.to_reference(kf, mv.x, image.origin));
-      xi_.push_back(xi);
-      weight_.push_back(measure * rp.weight);
+      map_at(xi);
+      add_point(xi, measure * rp.weight);
     }
   });
+  // The band, to first order. On a face of the piece in a face plane of kf (n . y = c, n outward), the
+  // straight image's boundary A(xi) lies where the true one X(xi) does not: the true piece reaches past
+  // the face by t = -Q / |grad_xi (n . A)| along the face's normal in xi, Q = n . (X(xi) - A(xi)) (< 0: X(xi)
+  // still inside kf). So int over the band ~ int_face t f(mid) dA_xi, mid the middle of the band's segment
+  // along the normal: points there with weights t dA_xi ds/dxi. The pieces on either side of a fluid face add
+  // up to the band's integral of f_K - f_K' to within O(t^2) per unit area where the integrand jumps (a
+  // gradient), O(t^3) where it is continuous (the mass), against O(t) and O(t^2) without.
+  const double* inv = integrand_.fluid.inverse_jacobian(kf);  // rows: grad_x xi_1, xi_2, xi_3 of kf
+  const Point3 r1{inv[0], inv[1], inv[2]}, r2{inv[3], inv[4], inv[5]}, r3{inv[6], inv[7], inv[8]};
+  // dy/dxi of the straight image: E_y E_xi^-1 (edges from corner 0); grad_xi (n . A) = E_xi^-T E_y^T n
+  const Point3 ey[3] = {image.sub_y[1] - image.sub_y[0], image.sub_y[2] - image.sub_y[0], image.sub_y[3] - image.sub_y[0]};
+  const Point3 ex[3] = {image.sub_xi[1] - image.sub_xi[0], image.sub_xi[2] - image.sub_xi[0],
+                        image.sub_xi[3] - image.sub_xi[0]};
+  const double ex_det = dot(ex[0], cross(ex[1], ex[2]));
+  // f(mid) t on a face: f of degree p in xi at mid = xi + t(xi) nu / 2, t quadratic: a polynomial of degree
+  // 2 p + 2 on the face, integrated exactly (so that the two sides of a fluid face where f does not jump cancel
+  // to round-off, whatever each side's fan of triangles)
+  const auto& face_rule = triangle_rule(std::min(60, 2 * image.degree + 2));
+  for (int f = 0; f < piece.faces; ++f) {
+    const int s = piece.face_start[f], e = piece.face_start[f + 1];
+    unsigned common = 0xFFu;
+    for (int i = s; i < e; ++i) common &= piece.planes[piece.face_index[i]];
+    const unsigned fluid_planes = common >> 4 & 0xFu;
+    if (fluid_planes == 0) continue;
+    const int j = __builtin_ctz(fluid_planes);  // the face of kf opposite its vertex j: n = -grad lambda_j
+    const Point3 n = j == 0 ? r1 + r2 + r3 : -1.0 * (j == 1 ? r1 : j == 2 ? r2 : r3);
+    const Point3 w{dot(ey[0], n), dot(ey[1], n), dot(ey[2], n)};  // E_y^T n
+    // z = E_xi^-T w: z . ex[i] = w_i, by the cofactors of E_xi
+    const Point3 z = (1 / ex_det) * (w.x * cross(ex[1], ex[2]) + w.y * cross(ex[2], ex[0]) + w.z * cross(ex[0], ex[1]));
+    const double grad = std::sqrt(dot(z, z));
+    if (!(grad > 0)) continue;
+    const int v0 = piece.face_index[s];
+    for (int i = s + 1; i + 1 < e; ++i) {
+      const int v1 = piece.face_index[i], v2 = piece.face_index[i + 1];
+      const Point3 q0 = xi_corner[v0], q1 = xi_corner[v1] - q0, q2 = xi_corner[v2] - q0;
+      const Point3 p0 = piece.v[v0], p1 = piece.v[v1] - p0, p2 = piece.v[v2] - p0;
+      const double area = std::sqrt(dot(cross(q1, q2), cross(q1, q2))) / 2 * solid_det;
+      for (const RulePoint& rp : face_rule) {
+        const Point3 xi = q0 + (rp.xi.x * q1 + rp.xi.y * q2);
+        const Point3 y = p0 + (rp.xi.x * p1 + rp.xi.y * p2);
+        map_at(xi);
+        const double t = -dot(n, mv.x - y) / grad;
+        // the band's segment [xi, xi + t z / |z|] by its midpoint (exact for an integrand affine along it)
+        const Point3 mid = xi + (0.5 * t / grad) * z;
+        map_at(mid);
+        add_point(mid, t * area * rp.weight);
+      }
+    }
+  }
   return volume;
 }
 

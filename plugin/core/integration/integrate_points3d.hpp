@@ -39,8 +39,10 @@ class PointIntegrator3 : public PieceIntegrator3 {
   void add_gathered(const MappedTet& mt, int kf, LocalBlock& block);
   // The rule's points on the piece's tetrahedra, into eta_, xi_, weight_ (and jac_); returns the piece's volume.
   double gather(const ClippedImage3& image, int kf, const Piece3& piece);
-  // The same on the reference side (image.reference_side): the rule on the preimages of the piece's tetrahedra under
-  // the sub-tetrahedron's affine interpolant, the fluid evaluated at the map's value at each point.
+  // The same on the reference side (image.reference_side): the rule on the preimages of the piece's tetrahedra
+  // under the sub-tetrahedron's affine interpolant, the fluid evaluated at the map's value at each point; and
+  // the band between each of the piece's faces on a fluid face plane and that plane's true preimage, to first
+  // order (points at the middle of its thickness, weighted by it).
   double gather_reference_side(const ClippedImage3& image, int kf, const Piece3& piece);
   // Folds the weights and the chain rule's jacobian into the fluid functions read (with constant multiplier
   // gradients, into their gradients' sums instead).
