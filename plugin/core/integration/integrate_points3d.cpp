@@ -147,8 +147,9 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
   // the face by t = -Q / |grad_xi (n . A)| along the face's normal in xi, Q = n . (X(xi) - A(xi)) (< 0: X(xi)
   // still inside kf). So int over the band ~ int_face t f(mid) dA_xi, mid the middle of the band's segment
   // along the normal: points there with weights t dA_xi ds/dxi. The pieces on either side of a fluid face add
-  // up to the band's integral of f_K - f_K' to within O(t^2) per unit area where the integrand jumps (a
-  // gradient), O(t^3) where it is continuous (the mass), against O(t) and O(t^2) without.
+  // up to the band's integral of f_K - f_K' to second order in t (the terms left: t^2 per unit area where the
+  // integrand jumps, a gradient, t^3 where it is continuous, the mass; against t and t^2 without), and for the
+  // prisms' mismatch where the fluid face crosses the sub-tetrahedra's faces (measured: docs/3d.md).
   const double* inv = integrand_.fluid.inverse_jacobian(kf);  // rows: grad_x xi_1, xi_2, xi_3 of kf
   const Point3 r1{inv[0], inv[1], inv[2]}, r2{inv[3], inv[4], inv[5]}, r3{inv[6], inv[7], inv[8]};
   // dy/dxi of the straight image: E_y E_xi^-1 (edges from corner 0); grad_xi (n . A) = E_xi^-T E_y^T n
