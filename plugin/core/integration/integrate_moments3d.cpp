@@ -159,10 +159,10 @@ double MomentIntegrator3::integrate(const ClippedImage3& image, int kf, const Pi
   const double* sg = st.gradient_s;
   // the multiplier's values at the centroid (its gradients are kept per tetrahedron)
   integrand_.multiplier.values_affine(mt.k, xi, sv);
+  if (scalar_p1_mass_) return add_scalar_p1_mass(mo.volume, mo.m, mo.scale, fv, fg, sv, block);
   const double(&j)[3][3] = mt.affine_value.jac;
   const double det = mt.affine_det, stiff = integrand_.c1 * mo.volume / det;
   const double mass = st.mass;
-  if (scalar_p1_mass_) return add_scalar_p1_mass(mo.volume, mo.m, mo.scale, fv, fg, sv, block);
   // per multiplier function: its gradient in y times 2^e
   double sy[3 * kMaxFunctions];
   for (int f = 0; f < 3 * multiplier_functions_; ++f) sy[f] = st.gradient_y[f] * mo.scale;

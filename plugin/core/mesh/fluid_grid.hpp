@@ -44,7 +44,7 @@ class FluidGridOf {
   // The range of cells [i0, i1] (per axis) that the bounding box of the n points p meets; false when it
   // misses the grid.
   bool cells_of(const PointT* p, int n, int* i0, int* i1) const;
-  // The cells and their elements (what the constructor would build; mutable members, set once).
+  // The cells and their elements, built by the first for_each_near (the members it sets are mutable).
   void build() const;
   // Calls f(c) for the cells of the range [i0, i1], the first axis running fastest.
   template <class F>
