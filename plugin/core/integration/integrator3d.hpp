@@ -29,7 +29,7 @@ using Integrand3 = IntegrandOf<Basis3, PolynomialBasis3>;
 // on images far from it against their size, below; as ClippedImage in 2D).
 struct ClippedImage3 {
   const MappedTet& tetrahedron;
-  int degree;  // of the rule on a piece: exact for the product where the map is affine
+  int degree;  // of the rule on a piece: exact for the integrand where the map is affine, and on the reference side
   // For a sub-tetrahedron: its reference corners and their images, whose affine interpolant gives Newton's
   // first guess (null for the whole image: MappedTet::affine_reference).
   const Point3* sub_xi = nullptr;
