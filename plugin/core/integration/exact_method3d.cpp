@@ -65,6 +65,13 @@ double ExactMethod3::clip_or_split(const ClippedImage3& image, const Point3 xi[4
                                    LocalBlock& block) {
   const MappedTet& mt = image.tetrahedron;
   if (qforder_ >= 0 || nonlinearity_on(mt, xi, y) <= kSplitNonlinearity3) return clip(image, y, block);
+  if (image.reference_side) {
+    int parts = 0;
+    const double outside = split_reference_side(image, xi, 1, parts, block);
+    ++counts_.split;
+    counts_.parts += parts;
+    return outside;
+  }
   if (!split_part3(mt, xi, y, kSplitNonlinearity3, kMaxPartDepth3, kMaxParts3, parts_)) {
     char msg[300];
     std::snprintf(msg, sizeof msg,
@@ -83,6 +90,42 @@ double ExactMethod3::clip_or_split(const ClippedImage3& image, const Point3 xi[4
                         part.y};
     piece.reference_side = image.reference_side;
     outside += clip(piece, part.y, block);
+  }
+  return outside;
+}
+
+// The reference side integrates on the preimages of the pieces, which must tile the reference tetrahedron:
+// parts split in fluid coordinates (split3d.hpp) would not (their reference corners are pulled back from
+// straight midpoints), so there the part xi is red-refined in reference coordinates, its corners mapped by X.
+// Where a split part meets an unsplit neighbour the straight images differ by the map's deviation from its
+// chords on their common face (O(h^2) there, the order of the band itself).
+double ExactMethod3::split_reference_side(const ClippedImage3& image, const Point3 xi[4], int depth, int& parts,
+                                          LocalBlock& block) {
+  const MappedTet& mt = image.tetrahedron;
+  double outside = 0;
+  for (const Tet& child : reference_subdivision(1)) {
+    Point3 cxi[4], cy[4];
+    for (int i = 0; i < 4; ++i) {
+      const Point3 r = child[i];
+      cxi[i] = xi[0] + (r.x * (xi[1] - xi[0]) + r.y * (xi[2] - xi[0]) + r.z * (xi[3] - xi[0]));
+      cy[i] = mt.at(cxi[i]).x;
+    }
+    if (nonlinearity_on(mt, cxi, cy) > kSplitNonlinearity3) {
+      if (depth >= kMaxPartDepth3 || parts + 8 > kMaxParts3) {
+        char msg[300];
+        std::snprintf(msg, sizeof msg,
+                      "the map nearly folds solid tetrahedron %d: its nonlinearity stays above %.3g on parts of 2^-%d "
+                      "of its size, or on more than %d parts",
+                      mt.k, kSplitNonlinearity3, depth, kMaxParts3);
+        throw Error(msg);
+      }
+      outside += split_reference_side(image, cxi, depth + 1, parts, block);
+      continue;
+    }
+    ++parts;
+    ClippedImage3 part{mt, image.degree, cxi, cy};
+    part.reference_side = true;
+    outside += clip(part, cy, block);
   }
   return outside;
 }

@@ -142,14 +142,19 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
       add_point(xi, measure * rp.weight);
     }
   });
-  // The band, to first order. On a face of the piece in a face plane of kf (n . y = c, n outward), the
-  // straight image's boundary A(xi) lies where the true one X(xi) does not: the true piece reaches past
-  // the face by t = -Q / |grad_xi (n . A)| along the face's normal in xi, Q = n . (X(xi) - A(xi)) (< 0: X(xi)
-  // still inside kf). So int over the band ~ int_face t f(mid) dA_xi, mid the middle of the band's segment
-  // along the normal: points there with weights t dA_xi ds/dxi. The pieces on either side of a fluid face add
-  // up to the band's integral of f_K - f_K' to second order in t (the terms left: t^2 per unit area where the
-  // integrand jumps, a gradient, t^3 where it is continuous, the mass; against t and t^2 without), and for the
-  // prisms' mismatch where the fluid face crosses the sub-tetrahedra's faces (measured: docs/3d.md).
+  // The band. On a face of the piece in a face plane of kf (n . y = c, n outward), the straight image's
+  // boundary A(xi) lies where the true one X(xi) does not: the true piece ends where q(xi) = n . X(xi) - c
+  // vanishes, past the face (q < 0 on it: X(xi) still inside kf) or short of it (q > 0). The band between
+  // them is taken in columns along one axis e_a of the solid's coordinates s (d = d xi / d s_a in each
+  // tetrahedron's reference coordinates), the axis along which the face plane's preimage rises most: from the
+  // face point xi the column reaches l, the root of q(xi + l d), a quadratic in l (a P2 map), and adds
+  // int_face l (d . nu) f(xi + l d / 2) dA_xi (nu the face's unit normal in xi, the column by its midpoint).
+  // Columns along a common axis tile the region between the straight images' surface and the true one
+  // whatever the sub-tetrahedra and solid tetrahedra it crosses, so that what is left is the midpoint rule
+  // along the column (l^3 per unit area) and where the axis changes or two fluid faces meet (l^2 per unit
+  // length). The pieces on either side of a fluid face take the same face points (a fan from the face's least
+  // vertex, each triangle's corners in that order: order() below), the same column, and opposite signs: they add
+  // up to the band's integral of f_K - f_K', to round-off where f does not jump.
   const double* inv = integrand_.fluid.inverse_jacobian(kf);  // rows: grad_x xi_1, xi_2, xi_3 of kf
   const Point3 r1{inv[0], inv[1], inv[2]}, r2{inv[3], inv[4], inv[5]}, r3{inv[6], inv[7], inv[8]};
   // dy/dxi of the straight image: E_y E_xi^-1 (edges from corner 0); grad_xi (n . A) = E_xi^-T E_y^T n
@@ -157,10 +162,14 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
   const Point3 ex[3] = {image.sub_xi[1] - image.sub_xi[0], image.sub_xi[2] - image.sub_xi[0],
                         image.sub_xi[3] - image.sub_xi[0]};
   const double ex_det = dot(ex[0], cross(ex[1], ex[2]));
-  // f(mid) t on a face: f of degree p in xi at mid = xi + t(xi) nu / 2, t quadratic: a polynomial of degree
-  // 2 p + 2 on the face, integrated exactly (so that the two sides of a fluid face where f does not jump cancel
-  // to round-off, whatever each side's fan of triangles)
-  const auto& face_rule = triangle_rule(std::min(60, 2 * image.degree + 2));
+  const Point3 axis[3] = {mt.reference_direction(0), mt.reference_direction(1), mt.reference_direction(2)};
+  // The face points must not depend on the side: the pieces' vertices are not numbered in any order
+  // (clip_filtered), so they are ordered by a linear function of their position in a direction that no mesh
+  // is aligned with (a tie, two vertices at the same value, is then an accident of measure zero).
+  const Point3 probe{0.8472130847939790, 0.3089153715245366, 0.4323690461218483};
+  auto order = [&piece, probe](int v) { return dot(piece.v[v], probe); };
+  // the rule for l f(mid), l about quadratic on the face
+  const auto& face_rule = triangle_rule(std::min(60, image.degree + 2));
   for (int f = 0; f < piece.faces; ++f) {
     const int s = piece.face_start[f], e = piece.face_start[f + 1];
     unsigned common = 0xFFu;
@@ -174,9 +183,21 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
     const Point3 z = (1 / ex_det) * (w.x * cross(ex[1], ex[2]) + w.y * cross(ex[2], ex[0]) + w.z * cross(ex[0], ex[1]));
     const double grad = std::sqrt(dot(z, z));
     if (!(grad > 0)) continue;
-    const int v0 = piece.face_index[s];
-    for (int i = s + 1; i + 1 < e; ++i) {
-      const int v1 = piece.face_index[i], v2 = piece.face_index[i + 1];
+    // the axis: the largest |d(n . A)/ds_a| = |z . d_a|, the first within 1e-9 of it (both sides of the face,
+    // whose n differ by a positive factor and round-off, choose the same)
+    const double g[3] = {dot(z, axis[0]), dot(z, axis[1]), dot(z, axis[2])};
+    const double largest = std::max({std::fabs(g[0]), std::fabs(g[1]), std::fabs(g[2])});
+    const int a = std::fabs(g[0]) >= (1 - 1e-9) * largest ? 0 : std::fabs(g[1]) >= (1 - 1e-9) * largest ? 1 : 2;
+    const Point3 d = (g[a] > 0 ? 1.0 : -1.0) * axis[a];  // outward: n . A grows along d
+    const double rise = std::fabs(g[a]);                 // d(n . A) along d
+    const double height = rise / grad;                   // d . nu: a column's height per unit of l
+    // the fan from the face's least vertex in order(), each triangle's other corners in that order
+    int first = s;
+    for (int i = s + 1; i < e; ++i) first = order(piece.face_index[i]) < order(piece.face_index[first]) ? i : first;
+    const int m = e - s, v0 = piece.face_index[first];
+    for (int i = 1; i + 1 < m; ++i) {
+      int v1 = piece.face_index[s + (first - s + i) % m], v2 = piece.face_index[s + (first - s + i + 1) % m];
+      if (order(v2) < order(v1)) std::swap(v1, v2);
       const Point3 q0 = xi_corner[v0], q1 = xi_corner[v1] - q0, q2 = xi_corner[v2] - q0;
       const Point3 p0 = piece.v[v0], p1 = piece.v[v1] - p0, p2 = piece.v[v2] - p0;
       const double area = std::sqrt(dot(cross(q1, q2), cross(q1, q2))) / 2 * solid_det;
@@ -184,11 +205,21 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
         const Point3 xi = q0 + (rp.xi.x * q1 + rp.xi.y * q2);
         const Point3 y = p0 + (rp.xi.x * p1 + rp.xi.y * p2);
         map_at(xi);
-        const double t = -dot(n, mv.x - y) / grad;
-        // the band's segment [xi, xi + t z / |z|] by its midpoint (exact for an integrand affine along it)
-        const Point3 mid = xi + (0.5 * t / grad) * z;
-        map_at(mid);
-        add_point(mid, t * area * rp.weight);
+        // q(l) = c0 + c1 l + c2 l^2 along the column: c0 and c1 = n . dX/ds_a at xi, c2 from q at the
+        // first-order step l1 = -c0 / c1, where c0 + c1 l1 = 0 (exact for a P2 map; where its slope is far off
+        // the straight image's, that slope and q(l1) make the quadratic)
+        const double c0 = dot(n, mv.x - y);
+        if (c0 == 0) continue;
+        const double jn = (g[a] > 0 ? 1.0 : -1.0) * (n.x * mv.jac[0][a] + n.y * mv.jac[1][a] + n.z * mv.jac[2][a]);
+        const double c1 = jn > 0.5 * rise ? jn : rise;  // the straight image's slope where the map's is far off
+        const double l1 = -c0 / c1;
+        map_at(xi + l1 * d);
+        const double c2 = dot(n, mv.x - y) / (l1 * l1);
+        const double disc = c1 * c1 - 4 * c0 * c2;
+        // the root continuous with l1 as c2 -> 0, in the form without cancellation
+        const double l = disc >= 0 ? -2 * c0 / (c1 + std::sqrt(disc)) : l1;
+        map_at(xi + (0.5 * l) * d);
+        add_point(xi + (0.5 * l) * d, l * height * area * rp.weight);
       }
     }
   }

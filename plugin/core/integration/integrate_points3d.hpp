@@ -41,8 +41,8 @@ class PointIntegrator3 : public PieceIntegrator3 {
   double gather(const ClippedImage3& image, int kf, const Piece3& piece);
   // The same on the reference side (image.reference_side): the rule on the preimages of the piece's tetrahedra
   // under the sub-tetrahedron's affine interpolant, the fluid evaluated at the map's value at each point; and
-  // the band between each of the piece's faces on a fluid face plane and that plane's true preimage, to first
-  // order (points at the middle of its thickness, weighted by it).
+  // the band between each of the piece's faces on a fluid face plane and that plane's true preimage, in
+  // columns along one solid axis (a point at each column's middle, weighted by its volume).
   double gather_reference_side(const ClippedImage3& image, int kf, const Piece3& piece);
   // Folds the weights and the chain rule's jacobian into the fluid functions read (with constant multiplier
   // gradients, into their gradients' sums instead).

@@ -25,6 +25,8 @@ class TetrahedronMap {
   MapValue3 at(Point3 xi) const;
   // v.jac = dX/ds from the reference-coordinate derivatives d[i] = dX/dxi_i: dX/dxi (ds/dxi)^-1.
   void set_jacobian(const Point3 d[3], MapValue3& v) const;
+  // d xi / d s_b: the reference-coordinate direction of the solid's axis b (0, 1, 2).
+  Point3 reference_direction(int b) const { return {inv_[0][b], inv_[1][b], inv_[2][b]}; }
   // The degree of the polynomial fitted to X (1 to kMaxDegree), or -1 when X is evaluated itself.
   int fitted_degree() const { return degree_; }
   // The monomial coefficients (lattice3d.hpp order) of component a of the fitted polynomial.
