@@ -97,6 +97,48 @@ double PointIntegrator3::gather(const ClippedImage3& image, int kf, const Piece3
   return volume;
 }
 
+namespace {
+
+struct LineRule {
+  std::vector<double> nodes, weights;
+};
+
+// Gauss-Legendre on [0, 1] with n points (1 <= n <= 21), formed once.
+const LineRule& gauss_legendre_rule(int n) {
+  static const std::vector<LineRule> rules = [] {
+    std::vector<LineRule> r(22);
+    for (int k = 1; k < 22; ++k) gauss_legendre(k, r[k].nodes, r[k].weights);
+    return r;
+  }();
+  return rules[std::min(21, std::max(1, n))];
+}
+
+}  // namespace
+
+void PointIntegrator3::reference_value(const ClippedImage3& image, Point3 xi, Point3& x, Point3 (&d)[3]) const {
+  const MappedTet& mt = image.tetrahedron;
+  if (image.origin != Point3()) {  // X(xi) - origin from the map's displacement, to the image's own precision
+    mt.displacement(xi, x, d);
+    x = x + (mt.origin() - image.origin);
+  } else {
+    mt.reference_derivatives(xi, x, d);
+  }
+}
+
+void PointIntegrator3::add_reference_point(const ClippedImage3& image, int kf, Point3 xi, Point3 x,
+                                           const Point3 (&d)[3], double weight) {
+  MapValue3 mv;
+  mv.x = x;
+  image.tetrahedron.set_jacobian(d, mv);
+  if (!(det3(mv.jac) > 0)) throw Error("the map folds solid tetrahedron " + std::to_string(image.tetrahedron.k));
+  std::array<double, 9>& jac = jac_.emplace_back();
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) jac[3 * a + b] = mv.jac[a][b];
+  eta_.push_back(integrand_.fluid.to_reference(kf, mv.x, image.origin));
+  xi_.push_back(xi);
+  weight_.push_back(weight);
+}
+
 double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int kf, const Piece3& piece) {
   const MappedTet& mt = image.tetrahedron;
   const auto& rule = tetrahedron_rule(image.degree);
@@ -105,71 +147,64 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
   for (int v = 0; v < piece.n; ++v) xi_corner[v] = image.guess(piece.v[v]);
   // ds = det [solid edges] dxi
   const double solid_det = volume6(mt.solid[0], mt.solid[1], mt.solid[2], mt.solid[3]);
-  // in local coordinates (image.origin nonzero): X(xi) - origin = (X(0) - origin) + displacement(xi), the first
-  // difference exact where the origin's coordinates are those of a nearby image point (Sterbenz)
-  const bool local = image.origin != Point3();
-  const Point3 shift = mt.origin() - image.origin;
   clear_points();
   double volume = 0;
-  MapValue3 mv;
-  // X and dX/ds at xi (relative to the origin when local), and the point added with its weight
-  auto map_at = [&](Point3 xi) {
-    if (local) {  // X(xi) - origin from the map's displacement, to the image's own precision
-      Point3 d[3];
-      mt.displacement(xi, mv.x, d);
-      mv.x = mv.x + shift;
-      mt.set_jacobian(d, mv);
-    } else {
-      mv = mt.at(xi);
-    }
-    if (!(det3(mv.jac) > 0)) throw Error("the map folds solid tetrahedron " + std::to_string(mt.k));
-  };
-  auto add_point = [&](Point3 xi, double weight) {
-    std::array<double, 9>& jac = jac_.emplace_back();
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) jac[3 * a + b] = mv.jac[a][b];
-    eta_.push_back(integrand_.fluid.to_reference(kf, mv.x, image.origin));
-    xi_.push_back(xi);
-    weight_.push_back(weight);
-  };
   piece.for_each_tetrahedron_index([&](int i0, int i1, int i2, int i3) {
     volume += std::fabs(volume6(piece.v[i0], piece.v[i1], piece.v[i2], piece.v[i3])) / 6;
     const Point3 xt[4] = {xi_corner[i0], xi_corner[i1], xi_corner[i2], xi_corner[i3]};
     const double measure = std::fabs(volume6(xt[0], xt[1], xt[2], xt[3])) / 6 * solid_det;
     for (const RulePoint3& rp : rule) {
       const Point3 xi = from_reference(xt, rp.xi);
-      map_at(xi);
-      add_point(xi, measure * rp.weight);
+      Point3 x, d[3];
+      reference_value(image, xi, x, d);
+      add_reference_point(image, kf, xi, x, d, measure * rp.weight);
     }
   });
-  // The band. On a face of the piece in a face plane of kf (n . y = c, n outward), the straight image's
-  // boundary A(xi) lies where the true one X(xi) does not: the true piece ends where q(xi) = n . X(xi) - c
-  // vanishes, past the face (q < 0 on it: X(xi) still inside kf) or short of it (q > 0). The band between
-  // them is taken in columns along one axis e_a of the solid's coordinates s (d = d xi / d s_a in each
-  // tetrahedron's reference coordinates), the axis along which the face plane's preimage rises most: from the
-  // face point xi the column reaches l, the root of q(xi + l d), a quadratic in l (a P2 map), and adds
-  // int_face l (d . nu) f(xi + l d / 2) dA_xi (nu the face's unit normal in xi, the column by its midpoint).
-  // Columns along a common axis tile the region between the straight images' surface and the true one
-  // whatever the sub-tetrahedra and solid tetrahedra it crosses, so that what is left is the midpoint rule
-  // along the column (l^3 per unit area) and where the axis changes or two fluid faces meet (l^2 per unit
-  // length). The pieces on either side of a fluid face take the same face points (a fan from the face's least
-  // vertex, each triangle's corners in that order: order() below), the same column, and opposite signs: they add
-  // up to the band's integral of f_K - f_K', to round-off where f does not jump.
+  gather_band(image, kf, piece, xi_corner, solid_det);
+  return volume;
+}
+
+// The band. On a face of the piece in a face plane of kf (n . y = c, n outward), the straight image's
+// boundary A(xi) lies where the true one X(xi) does not: the true piece ends where q(xi) = n . X(xi) - c
+// vanishes, past the face (q < 0 on it: X(xi) still inside kf) or short of it (q > 0). The band between
+// them is taken in columns along one axis e_a of the solid's coordinates s (d = d xi / d s_a in each
+// tetrahedron's reference coordinates), the axis along which the face plane's preimage rises most: from the
+// face point xi the column reaches l, the root of q(xi + l d), a quadratic in l (a P2 map), and adds
+// int_face (d . nu) int_0^l f(xi + s d) ds dA_xi (nu the face's unit normal in xi). Along the column f is a
+// polynomial of the rule's degree in s (Gauss-Legendre, exact); over the face, int_0^l f is a polynomial of
+// degree 2 p + 2 where l is quadratic in xi (n . X linear along d), and smooth otherwise.
+// Columns along a common axis tile the region between the straight images' surface and the true one
+// whatever the sub-tetrahedra and solid tetrahedra it crosses, so that a kink along one fluid plane is
+// integrated to round-off. What is left, where the integrand jumps: t^2 per unit length where the axis
+// changes, where a column leaves the solid, and where two fluid faces meet (each plane's columns end at the
+// other's straight image, not at its true preimage). The pieces on either side of a fluid face take the same
+// face points (a fan from the face's least vertex, each triangle's corners in that order: order() below), the
+// same column, and opposite signs: they add up to the band's integral of f_K - f_K', to round-off where f
+// does not jump.
+void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Piece3& piece, const Point3* xi_corner,
+                                   double solid_det) {
+  const MappedTet& mt = image.tetrahedron;
   const double* inv = integrand_.fluid.inverse_jacobian(kf);  // rows: grad_x xi_1, xi_2, xi_3 of kf
   const Point3 r1{inv[0], inv[1], inv[2]}, r2{inv[3], inv[4], inv[5]}, r3{inv[6], inv[7], inv[8]};
   // dy/dxi of the straight image: E_y E_xi^-1 (edges from corner 0); grad_xi (n . A) = E_xi^-T E_y^T n
-  const Point3 ey[3] = {image.sub_y[1] - image.sub_y[0], image.sub_y[2] - image.sub_y[0], image.sub_y[3] - image.sub_y[0]};
+  const Point3 ey[3] = {image.sub_y[1] - image.sub_y[0], image.sub_y[2] - image.sub_y[0],
+                        image.sub_y[3] - image.sub_y[0]};
   const Point3 ex[3] = {image.sub_xi[1] - image.sub_xi[0], image.sub_xi[2] - image.sub_xi[0],
                         image.sub_xi[3] - image.sub_xi[0]};
   const double ex_det = dot(ex[0], cross(ex[1], ex[2]));
   const Point3 axis[3] = {mt.reference_direction(0), mt.reference_direction(1), mt.reference_direction(2)};
+  // a quadratic map along a column: X(xi + l d) = X + l D d + l^2 (d^T H d) / 2, D(xi + l d) = D + l H d
+  double hessian[3][3][3];
+  const bool quadratic = mt.reference_hessian(hessian);
   // The face points must not depend on the side: the pieces' vertices are not numbered in any order
   // (clip_filtered), so they are ordered by a linear function of their position in a direction that no mesh
   // is aligned with (a tie, two vertices at the same value, is then an accident of measure zero).
   const Point3 probe{0.8472130847939790, 0.3089153715245366, 0.4323690461218483};
   auto order = [&piece, probe](int v) { return dot(piece.v[v], probe); };
-  // the rule for l f(mid), l about quadratic on the face
-  const auto& face_rule = triangle_rule(std::min(60, image.degree + 2));
+  // the face's rule, for int_0^l f (degree 2 p + 2 where l is quadratic), and the column's (xi + s d is affine in
+  // s: f is a polynomial of degree p in s)
+  const auto& face_rule = triangle_rule(std::min(60, 2 * image.degree + 2));
+  const LineRule& along = gauss_legendre_rule(image.degree / 2 + 1);
   for (int f = 0; f < piece.faces; ++f) {
     const int s = piece.face_start[f], e = piece.face_start[f + 1];
     unsigned common = 0xFFu;
@@ -191,6 +226,14 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
     const Point3 d = (g[a] > 0 ? 1.0 : -1.0) * axis[a];  // outward: n . A grows along d
     const double rise = std::fabs(g[a]);                 // d(n . A) along d
     const double height = rise / grad;                   // d . nu: a column's height per unit of l
+    Point3 hd[3], dhd;  // (H d)_i = d(dX/dxi_i) along d; d^T H d (quadratic maps)
+    if (quadratic) {
+      for (int i = 0; i < 3; ++i)
+        hd[i] = {hessian[0][i][0] * d.x + hessian[0][i][1] * d.y + hessian[0][i][2] * d.z,
+                 hessian[1][i][0] * d.x + hessian[1][i][1] * d.y + hessian[1][i][2] * d.z,
+                 hessian[2][i][0] * d.x + hessian[2][i][1] * d.y + hessian[2][i][2] * d.z};
+      dhd = d.x * hd[0] + d.y * hd[1] + d.z * hd[2];
+    }
     // the fan from the face's least vertex in order(), each triangle's other corners in that order
     int first = s;
     for (int i = s + 1; i < e; ++i) first = order(piece.face_index[i]) < order(piece.face_index[first]) ? i : first;
@@ -204,27 +247,44 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
       for (const RulePoint& rp : face_rule) {
         const Point3 xi = q0 + (rp.xi.x * q1 + rp.xi.y * q2);
         const Point3 y = p0 + (rp.xi.x * p1 + rp.xi.y * p2);
-        map_at(xi);
-        // q(l) = c0 + c1 l + c2 l^2 along the column: c0 and c1 = n . dX/ds_a at xi, c2 from q at the
-        // first-order step l1 = -c0 / c1, where c0 + c1 l1 = 0 (exact for a P2 map; where its slope is far off
-        // the straight image's, that slope and q(l1) make the quadratic)
-        const double c0 = dot(n, mv.x - y);
+        Point3 x0, D[3];
+        reference_value(image, xi, x0, D);
+        const Point3 dd = d.x * D[0] + d.y * D[1] + d.z * D[2];  // dX/dl along the column
+        // q(l) = c0 + c1 l + c2 l^2 along the column: c0 and c1 = n . dX/dl at xi; c2 = n . d^T H d / 2 for a
+        // quadratic map, else from q at the first-order step l1 = -c0 / c1 (where c0 + c1 l1 = 0); where the
+        // map's slope is far off the straight image's, that slope alone
+        const double c0 = dot(n, x0 - y);
         if (c0 == 0) continue;
-        const double jn = (g[a] > 0 ? 1.0 : -1.0) * (n.x * mv.jac[0][a] + n.y * mv.jac[1][a] + n.z * mv.jac[2][a]);
-        const double c1 = jn > 0.5 * rise ? jn : rise;  // the straight image's slope where the map's is far off
-        const double l1 = -c0 / c1;
-        map_at(xi + l1 * d);
-        const double c2 = dot(n, mv.x - y) / (l1 * l1);
+        const double jn = dot(n, dd);
+        double c1 = rise, c2 = 0;
+        if (jn > 0.5 * rise) {
+          c1 = jn;
+          if (quadratic) {
+            c2 = 0.5 * dot(n, dhd);
+          } else {
+            const double l1 = -c0 / c1;
+            Point3 x1, D1[3];
+            reference_value(image, xi + l1 * d, x1, D1);
+            c2 = dot(n, x1 - y) / (l1 * l1);
+          }
+        }
         const double disc = c1 * c1 - 4 * c0 * c2;
-        // the root continuous with l1 as c2 -> 0, in the form without cancellation
-        const double l = disc >= 0 ? -2 * c0 / (c1 + std::sqrt(disc)) : l1;
-        map_at(xi + (0.5 * l) * d);
-        add_point(xi + (0.5 * l) * d, l * height * area * rp.weight);
+        // the root continuous with -c0 / c1 as c2 -> 0, in the form without cancellation
+        const double l = disc >= 0 ? -2 * c0 / (c1 + std::sqrt(disc)) : -c0 / c1;
+        const double column = l * height * area * rp.weight;
+        for (size_t k = 0; k < along.nodes.size(); ++k) {
+          const double t = along.nodes[k] * l;
+          const Point3 at = xi + t * d;
+          Point3 xt = x0 + t * dd + (0.5 * t * t) * dhd;
+          Point3 Dt[3] = {D[0] + t * hd[0], D[1] + t * hd[1], D[2] + t * hd[2]};
+          if (!quadratic) reference_value(image, at, xt, Dt);
+          add_reference_point(image, kf, at, xt, Dt, along.weights[k] * column);
+        }
       }
     }
   }
-  return volume;
 }
+
 
 void PointIntegrator3::weigh(const MappedTet& mt, int n, const std::vector<char>& read) {
   const double(&aj)[3][3] = mt.affine_value.jac;

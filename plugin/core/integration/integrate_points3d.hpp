@@ -44,6 +44,15 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // the band between each of the piece's faces on a fluid face plane and that plane's true preimage, in
   // columns along one solid axis (a point at each column's middle, weighted by its volume).
   double gather_reference_side(const ClippedImage3& image, int kf, const Piece3& piece);
+  // The band's points (gather_reference_side): columns from the piece's faces on fluid face planes to the
+  // planes' true preimages; xi_corner the piece's corners taken back, solid_det 6 |solid tetrahedron|.
+  void gather_band(const ClippedImage3& image, int kf, const Piece3& piece, const Point3* xi_corner,
+                   double solid_det);
+  // On the reference side: X at xi (relative to image.origin when it is not 0) and d[i] = dX/dxi_i.
+  void reference_value(const ClippedImage3& image, Point3 xi, Point3& x, Point3 (&d)[3]) const;
+  // Adds reference point xi where X is x and dX/dxi is d, with its weight; throws where the map folds.
+  void add_reference_point(const ClippedImage3& image, int kf, Point3 xi, Point3 x, const Point3 (&d)[3],
+                           double weight);
   // Folds the weights and the chain rule's jacobian into the fluid functions read (with constant multiplier
   // gradients, into their gradients' sums instead).
   void weigh(const MappedTet& mt, int n, const std::vector<char>& read);

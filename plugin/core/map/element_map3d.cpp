@@ -65,6 +65,20 @@ void TetrahedronMap::polynomial(Point3 xi, Point3& x, Point3 d[3], int first) co
     sum_polynomial(c_, degree_, nm, xi, x, d, first);
 }
 
+bool TetrahedronMap::reference_hessian(double h[3][3][3]) const {
+  if (degree_ != 2) return false;
+  for (int a = 0; a < 3; ++a) {  // monomials xi1^2, xi1 xi2, xi2^2, xi1 xi3, xi2 xi3, xi3^2: c_[a][4 .. 9]
+    const double* ca = c_[a];
+    h[a][0][0] = 2 * ca[4];
+    h[a][1][1] = 2 * ca[6];
+    h[a][2][2] = 2 * ca[9];
+    h[a][0][1] = h[a][1][0] = ca[5];
+    h[a][0][2] = h[a][2][0] = ca[7];
+    h[a][1][2] = h[a][2][1] = ca[8];
+  }
+  return true;
+}
+
 void TetrahedronMap::set_jacobian(const Point3 d[3], MapValue3& v) const {
   // dX_a/ds_b = sum_i dX_a/dxi_i dxi_i/ds_b
   const double dx[3][3] = {{d[0].x, d[1].x, d[2].x}, {d[0].y, d[1].y, d[2].y}, {d[0].z, d[1].z, d[2].z}};

@@ -27,6 +27,9 @@ class TetrahedronMap {
   void set_jacobian(const Point3 d[3], MapValue3& v) const;
   // d xi / d s_b: the reference-coordinate direction of the solid's axis b (0, 1, 2).
   Point3 reference_direction(int b) const { return {inv_[0][b], inv_[1][b], inv_[2][b]}; }
+  // For a quadratic fit (fitted_degree() == 2): h[a][i][j] = d^2 X_a / dxi_i dxi_j, the same everywhere; true.
+  // False for any other degree.
+  bool reference_hessian(double h[3][3][3]) const;
   // The degree of the polynomial fitted to X (1 to kMaxDegree), or -1 when X is evaluated itself.
   int fitted_degree() const { return degree_; }
   // The monomial coefficients (lattice3d.hpp order) of component a of the fitted polynomial.
