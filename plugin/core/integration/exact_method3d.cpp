@@ -64,14 +64,18 @@ double ExactMethod3::integrate(const MappedTet& mt, LocalBlock& block) {
 double ExactMethod3::clip_or_split(const ClippedImage3& image, const Point3 xi[4], const Point3 y[4],
                                    LocalBlock& block) {
   const MappedTet& mt = image.tetrahedron;
-  if (qforder_ >= 0 || nonlinearity_on(mt, xi, y) <= kSplitNonlinearity3) return clip(image, y, block);
   if (image.reference_side) {
+    // the preimages of the pieces tile xi whatever the map's nonlinearity there; a split is needed only where
+    // the straight image is not positively oriented, and would leave straight images that do not meet those of
+    // the neighbours (the band's columns need them to)
+    if (orient3d(y[0], y[1], y[2], y[3]) > 0) return clip(image, y, block);
     int parts = 0;
     const double outside = split_reference_side(image, xi, 1, parts, block);
     ++counts_.split;
     counts_.parts += parts;
     return outside;
   }
+  if (qforder_ >= 0 || nonlinearity_on(mt, xi, y) <= kSplitNonlinearity3) return clip(image, y, block);
   if (!split_part3(mt, xi, y, kSplitNonlinearity3, kMaxPartDepth3, kMaxParts3, parts_)) {
     char msg[300];
     std::snprintf(msg, sizeof msg,
@@ -96,9 +100,10 @@ double ExactMethod3::clip_or_split(const ClippedImage3& image, const Point3 xi[4
 
 // The reference side integrates on the preimages of the pieces, which must tile the reference tetrahedron:
 // parts split in fluid coordinates (split3d.hpp) would not (their reference corners are pulled back from
-// straight midpoints), so there the part xi is red-refined in reference coordinates, its corners mapped by X.
-// Where a split part meets an unsplit neighbour the straight images differ by the map's deviation from its
-// chords on their common face (O(h^2) there, the order of the band itself).
+// straight midpoints), so there the part xi is red-refined in reference coordinates, its corners mapped by X,
+// until every part's straight image is positively oriented. Where a split part meets an unsplit neighbour the
+// straight images differ by the map's deviation from its chords on their common face, which the band's
+// columns do not see: the split is the exception (a sub-tetrahedron far larger than the map's curvature).
 double ExactMethod3::split_reference_side(const ClippedImage3& image, const Point3 xi[4], int depth, int& parts,
                                           LocalBlock& block) {
   const MappedTet& mt = image.tetrahedron;
@@ -110,13 +115,13 @@ double ExactMethod3::split_reference_side(const ClippedImage3& image, const Poin
       cxi[i] = xi[0] + (r.x * (xi[1] - xi[0]) + r.y * (xi[2] - xi[0]) + r.z * (xi[3] - xi[0]));
       cy[i] = mt.at(cxi[i]).x;
     }
-    if (nonlinearity_on(mt, cxi, cy) > kSplitNonlinearity3) {
+    if (orient3d(cy[0], cy[1], cy[2], cy[3]) <= 0) {
       if (depth >= kMaxPartDepth3 || parts + 8 > kMaxParts3) {
         char msg[300];
         std::snprintf(msg, sizeof msg,
-                      "the map nearly folds solid tetrahedron %d: its nonlinearity stays above %.3g on parts of 2^-%d "
-                      "of its size, or on more than %d parts",
-                      mt.k, kSplitNonlinearity3, depth, kMaxParts3);
+                      "the map nearly folds solid tetrahedron %d: the straight images of its parts stay flat or "
+                      "inverted down to parts of 2^-%d of its size, or on more than %d parts",
+                      mt.k, depth, kMaxParts3);
         throw Error(msg);
       }
       outside += split_reference_side(image, cxi, depth + 1, parts, block);

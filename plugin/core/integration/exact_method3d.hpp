@@ -52,11 +52,11 @@ class ExactMethod3 : public TetrahedronIntegrator {
   static constexpr double kLocalRatio = 1024;
   // clip(), or where the map's nonlinearity on the straight tetrahedron y (the images of the reference
   // points xi) is above kSplitNonlinearity3 and qforder is automatic, clip() of its parts (split3d.hpp),
-  // each with the rule of its own nonlinearity (on the reference side, split_reference_side's parts); throws
-  // Error when the split needs more than its limits.
+  // each with the rule of its own nonlinearity (on the reference side, clip() unless y is not positively
+  // oriented, then split_reference_side's parts); throws Error when the split needs more than its limits.
   double clip_or_split(const ClippedImage3& image, const Point3 xi[4], const Point3 y[4], LocalBlock& block);
-  // On the reference side: xi red-refined in reference coordinates until every part's nonlinearity is at most
-  // kSplitNonlinearity3 (the same limits), each part clipped; parts counts them.
+  // On the reference side: xi red-refined in reference coordinates until every part's straight image is
+  // positively oriented (the same limits), each part clipped; parts counts them.
   double split_reference_side(const ClippedImage3& image, const Point3 xi[4], int depth, int& parts,
                               LocalBlock& block);
   // The rule for a part of nonlinearity d (rule_degree's formula with scale 1).

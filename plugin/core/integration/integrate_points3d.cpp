@@ -14,17 +14,41 @@
 
 namespace dlmfsi {
 
-PointIntegrator3::PointIntegrator3(const Integrand3& integrand, CouplingReport& counts)
+PointIntegrator3::PointIntegrator3(const Integrand3& integrand, CouplingReport& counts, const FluidSide3* fluid)
     : integrand_(integrand), counts_(counts), fluid_functions_(static_cast<int>(integrand.fluid.functions().size())),
       gradients_(integrand.c1 != 0), listing_(integrand.c1 != 0 && !integrand.chain),
       constant_multiplier_gradients_(gradients_ && !listing_ && integrand.multiplier.fitted() &&
                                      integrand.multiplier.degree() <= 1),
-      values_(integrand) {}
+      fluid_(fluid), values_(integrand) {}
 
 double PointIntegrator3::integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) {
+  across_.clear();
   const double volume = gather(image, kf, piece);
   add_gathered(image.tetrahedron, kf, block);
+  if (!across_.empty()) add_across(image.tetrahedron, block);
   return volume;
+}
+
+void PointIntegrator3::add_across(const MappedTet& mt, LocalBlock& block) {
+  // by fluid tetrahedron, in the order met (a piece has at most 4 face planes)
+  while (!across_.empty()) {
+    const int kf = across_.front().kf;
+    clear_points();
+    size_t kept = 0;
+    for (const AcrossPoint& a : across_) {
+      if (a.kf != kf) {
+        across_[kept++] = a;
+        continue;
+      }
+      eta_.push_back(a.point.eta);
+      xi_.push_back(a.point.xi);
+      weight_.push_back(a.point.weight);
+      jac_.push_back(a.point.jac);
+    }
+    across_.resize(kept);
+    block.enter_fluid_element(fluid_->dofs(kf));
+    add_gathered(mt, kf, block);
+  }
 }
 
 void PointIntegrator3::add_points(const MappedTet& mt, int kf, const PointData* points, int n, LocalBlock& block) {
@@ -115,7 +139,8 @@ const LineRule& gauss_legendre_rule(int n) {
 
 }  // namespace
 
-void PointIntegrator3::reference_value(const ClippedImage3& image, Point3 xi, Point3& x, Point3 (&d)[3]) const {
+// Inline (used here only): a call per point through the plugin's symbol table cost 12 % of a curved call.
+inline void PointIntegrator3::reference_value(const ClippedImage3& image, Point3 xi, Point3& x, Point3 (&d)[3]) const {
   const MappedTet& mt = image.tetrahedron;
   if (image.origin != Point3()) {  // X(xi) - origin from the map's displacement, to the image's own precision
     mt.displacement(xi, x, d);
@@ -125,7 +150,7 @@ void PointIntegrator3::reference_value(const ClippedImage3& image, Point3 xi, Po
   }
 }
 
-void PointIntegrator3::add_reference_point(const ClippedImage3& image, int kf, Point3 xi, Point3 x,
+inline void PointIntegrator3::add_reference_point(const ClippedImage3& image, int kf, Point3 xi, Point3 x,
                                            const Point3 (&d)[3], double weight) {
   MapValue3 mv;
   mv.x = x;
@@ -162,6 +187,44 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
   });
   gather_band(image, kf, piece, xi_corner, solid_det);
   return volume;
+}
+
+// Where a face plane of kf holds a face of the sub-tetrahedron, the band on each side lies in that side's
+// sub-tetrahedron (or outside the solid), and there is no piece of the same sub-tetrahedron across: the columns
+// going into the sub-tetrahedron carry both terms (-f_K here, +f_K' of the fluid tetrahedron K' across, added by
+// add_across), those going out nothing (the sub-tetrahedron across does them with its own map; beyond the solid
+// there is nothing). Exact signs on the sub-tetrahedron's image corners decide.
+int PointIntegrator3::fluid_plane(const ClippedImage3& image, int kf, unsigned common, bool& on_boundary) const {
+  const unsigned fluid_planes = common >> 4 & 0xFu;
+  on_boundary = false;
+  if (fluid_planes != 0 && !fluid_) return __builtin_ctz(fluid_planes);
+  if (!fluid_) return -1;
+  Point3 corner[4];
+  fluid_->mesh().corners(kf, corner);
+  // orient3d of kf's face j (opposite vertex j) against p, signed so that kf's vertex j is positive
+  auto side = [&corner](int j, Point3 p) {
+    const Point3 &a = corner[(j + 1) & 3], &b = corner[(j + 2) & 3], &c = corner[(j + 3) & 3];
+    return orient3d(a, b, c, p) * orient3d(a, b, c, corner[j]);
+  };
+  if (fluid_planes != 0) {  // on the sub-tetrahedron's boundary iff no corner of its image lies beyond the plane
+    const int j = __builtin_ctz(fluid_planes);
+    on_boundary = true;
+    for (int i = 0; i < 4; ++i) on_boundary = on_boundary && side(j, image.sub_y[i]) >= 0;
+    return j;
+  }
+  if ((common & 0xFu) == 0) return -1;
+  // a face of the sub-tetrahedron's image (opposite its corner i): in a plane of kf? (the clip keeps one bit
+  // for a plane of both)
+  const int i = __builtin_ctz(common & 0xFu);
+  for (int j = 0; j < 4; ++j) {
+    bool all = true;
+    for (int c = 1; c < 4 && all; ++c) all = side(j, image.sub_y[(i + c) & 3]) == 0;
+    if (all) {
+      on_boundary = true;
+      return j;
+    }
+  }
+  return -1;
 }
 
 // The band. On a face of the piece in a face plane of kf (n . y = c, n outward), the straight image's
@@ -209,9 +272,9 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
     const int s = piece.face_start[f], e = piece.face_start[f + 1];
     unsigned common = 0xFFu;
     for (int i = s; i < e; ++i) common &= piece.planes[piece.face_index[i]];
-    const unsigned fluid_planes = common >> 4 & 0xFu;
-    if (fluid_planes == 0) continue;
-    const int j = __builtin_ctz(fluid_planes);  // the face of kf opposite its vertex j: n = -grad lambda_j
+    bool on_boundary = false;
+    const int j = fluid_plane(image, kf, common, on_boundary);
+    if (j < 0) continue;
     const Point3 n = j == 0 ? r1 + r2 + r3 : -1.0 * (j == 1 ? r1 : j == 2 ? r2 : r3);
     const Point3 w{dot(ey[0], n), dot(ey[1], n), dot(ey[2], n)};  // E_y^T n
     // z = E_xi^-T w: z . ex[i] = w_i, by the cofactors of E_xi
@@ -271,7 +334,9 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
         const double disc = c1 * c1 - 4 * c0 * c2;
         // the root continuous with -c0 / c1 as c2 -> 0, in the form without cancellation
         const double l = disc >= 0 ? -2 * c0 / (c1 + std::sqrt(disc)) : -c0 / c1;
+        if (on_boundary && !(l < 0)) continue;
         const double column = l * height * area * rp.weight;
+        const int across = on_boundary ? fluid_->mesh().neighbours[kf][j] : -1;
         for (size_t k = 0; k < along.nodes.size(); ++k) {
           const double t = along.nodes[k] * l;
           const Point3 at = xi + t * d;
@@ -279,6 +344,12 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
           Point3 Dt[3] = {D[0] + t * hd[0], D[1] + t * hd[1], D[2] + t * hd[2]};
           if (!quadratic) reference_value(image, at, xt, Dt);
           add_reference_point(image, kf, at, xt, Dt, along.weights[k] * column);
+          if (across >= 0) {
+            AcrossPoint& p = across_.emplace_back();
+            p.kf = across;
+            p.point = {integrand_.fluid.to_reference(across, xt, image.origin), at, -along.weights[k] * column,
+                       jac_.back()};
+          }
         }
       }
     }

@@ -17,9 +17,13 @@
 
 namespace dlmfsi {
 
+class FluidSide3;
+
 class PointIntegrator3 : public PieceIntegrator3 {
  public:
-  PointIntegrator3(const Integrand3& integrand, CouplingReport& counts);
+  // fluid: its mesh's adjacency and dofs, for the band on the reference side where a sub-tetrahedron's face lies
+  // in a fluid face plane (gather_band); without it that band is left out.
+  PointIntegrator3(const Integrand3& integrand, CouplingReport& counts, const FluidSide3* fluid = nullptr);
   double integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) override;
 
   // A point of the solid tetrahedron whose image lies in fluid tetrahedron kf: reference coordinates in kf
@@ -48,6 +52,9 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // planes' true preimages; xi_corner the piece's corners taken back, solid_det 6 |solid tetrahedron|.
   void gather_band(const ClippedImage3& image, int kf, const Piece3& piece, const Point3* xi_corner,
                    double solid_det);
+  // The face of kf (opposite its vertex j) whose plane holds the piece's face whose vertices share the planes
+  // common (Piece3::planes' bits), or -1; on_boundary when that face is on the sub-tetrahedron's boundary.
+  int fluid_plane(const ClippedImage3& image, int kf, unsigned common, bool& on_boundary) const;
   // On the reference side: X at xi (relative to image.origin when it is not 0) and d[i] = dX/dxi_i.
   void reference_value(const ClippedImage3& image, Point3 xi, Point3& x, Point3 (&d)[3]) const;
   // Adds reference point xi where X is x and dX/dxi is d, with its weight; throws where the map folds.
@@ -78,6 +85,15 @@ class PointIntegrator3 : public PieceIntegrator3 {
   std::vector<double> weight_;
   std::vector<std::array<double, 9>> jac_;
   void clear_points();
+  const FluidSide3* fluid_;
+  // Band points of the fluid tetrahedron across a face plane of the piece's (gather_band), added after the
+  // piece's own (add_across).
+  struct AcrossPoint {
+    int kf;
+    PointData point;
+  };
+  std::vector<AcrossPoint> across_;
+  void add_across(const MappedTet& mt, LocalBlock& block);
   PointValues3 values_;
 };
 
