@@ -17,8 +17,8 @@ std::unique_ptr<TetrahedronIntegrator> choose_integrator(const Integrand3& integ
   if (MomentIntegrator3::applies(integrand)) affine = std::make_unique<MomentIntegrator3>(integrand, counts);
   else if (MonomialIntegrator3::applies(integrand)) affine = std::make_unique<MonomialIntegrator3>(integrand, counts);
   return std::make_unique<ExactMethod3>(fluid, search, integrand, options.qforder, options.subdivide,
-                                        std::make_unique<PointIntegrator3>(integrand, counts, &fluid), std::move(affine),
-                                        counts);
+                                        std::make_unique<PointIntegrator3>(integrand, counts, &fluid),
+                                        std::move(affine), counts);
 }
 
 }  // namespace dlmfsi

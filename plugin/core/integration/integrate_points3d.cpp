@@ -151,7 +151,7 @@ inline void PointIntegrator3::reference_value(const ClippedImage3& image, Point3
 }
 
 inline void PointIntegrator3::add_reference_point(const ClippedImage3& image, int kf, Point3 xi, Point3 x,
-                                           const Point3 (&d)[3], double weight) {
+                                                  const Point3 (&d)[3], double weight) {
   MapValue3 mv;
   mv.x = x;
   image.tetrahedron.set_jacobian(d, mv);
@@ -355,7 +355,6 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
     }
   }
 }
-
 
 void PointIntegrator3::weigh(const MappedTet& mt, int n, const std::vector<char>& read) {
   const double(&aj)[3][3] = mt.affine_value.jac;

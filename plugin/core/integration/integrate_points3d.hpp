@@ -22,7 +22,7 @@ class FluidSide3;
 class PointIntegrator3 : public PieceIntegrator3 {
  public:
   // fluid: its mesh's adjacency and dofs, for the band on the reference side where a sub-tetrahedron's face lies
-  // in a fluid face plane (gather_band); without it that band is left out.
+  // in a fluid face plane (gather_band); without it such faces are taken as faces inside the sub-tetrahedron.
   PointIntegrator3(const Integrand3& integrand, CouplingReport& counts, const FluidSide3* fluid = nullptr);
   double integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) override;
 
@@ -46,7 +46,7 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // The same on the reference side (image.reference_side): the rule on the preimages of the piece's tetrahedra
   // under the sub-tetrahedron's affine interpolant, the fluid evaluated at the map's value at each point; and
   // the band between each of the piece's faces on a fluid face plane and that plane's true preimage, in
-  // columns along one solid axis (a point at each column's middle, weighted by its volume).
+  // columns along one solid axis (Gauss-Legendre points along each column: gather_band).
   double gather_reference_side(const ClippedImage3& image, int kf, const Piece3& piece);
   // The band's points (gather_reference_side): columns from the piece's faces on fluid face planes to the
   // planes' true preimages; xi_corner the piece's corners taken back, solid_det 6 |solid tetrahedron|.
