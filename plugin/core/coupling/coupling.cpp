@@ -65,7 +65,7 @@ class Assembler {
     block_.start(solid_.rows(ks));
     ++report.solid_elements;
     (mt.affine ? report.affine : (mt.straight ? report.straight : report.curved))++;
-    const double image_area = 0.5 * area2(mt.image[0], mt.image[1], mt.image[2]);
+    const double image_area = 0.5 * std::fabs(area2(mt.image[0], mt.image[1], mt.image[2]));
     const double outside = std::max(integrator_->integrate(mt, block_), 0.0);
     report.image_measure += image_area;
     report.outside_measure += outside;

@@ -90,9 +90,7 @@ double ExactMethod3::clip_or_split(const ClippedImage3& image, const Point3 xi[4
   // of a curved image: the same scale).
   double outside = 0;
   for (const MapPart3& part : parts_) {
-    ClippedImage3 piece{mt, image.reference_side ? image.degree : part_rule_degree(part.nonlinearity, !mt.planar), part.xi,
-                        part.y};
-    piece.reference_side = image.reference_side;
+    ClippedImage3 piece{mt, part_rule_degree(part.nonlinearity, !mt.planar), part.xi, part.y};
     outside += clip(piece, part.y, block);
   }
   return outside;
@@ -159,9 +157,11 @@ int ExactMethod3::part_rule_degree(double nonlinearity, bool curved) {
 
 double ExactMethod3::clip(const ClippedImage3& image, const Point3 img[4], LocalBlock& block) {
   const int o = orient3d(img[0], img[1], img[2], img[3]);
+  // Folds are refused before (MappedTet::prepare: the corners, the fold certificate): here the chords cross.
   if (o <= 0)
-    throw Error("the map folds solid tetrahedron " + std::to_string(image.tetrahedron.k) +
-                " (a sub-tetrahedron's image is " + (o == 0 ? "flat)" : "negatively oriented)"));
+    throw Error("the straight image of a part of solid tetrahedron " + std::to_string(image.tetrahedron.k) + " is " +
+                (o == 0 ? "flat" : "negatively oriented") +
+                " although the map does not fold there (its chords cross): a larger subdivide may integrate it");
   PieceIntegrator3& integrator = affine_ && image.tetrahedron.affine ? *affine_ : *general_;
   double covered = 0;
   auto add_piece = [&](const ClippedImage3& in, int kf, const Piece3& piece) {

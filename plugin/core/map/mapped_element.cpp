@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "errors.hpp"
 #include "map/fold.hpp"
@@ -30,7 +31,8 @@ void MappedTriangle::prepare(const Mesh& solid_mesh, const SolidMap& map, int kk
     throw Error("the map is NaN or Inf at a corner of " + name());
   const int o = orient2d(image[0], image[1], image[2]);
   if (o == 0) throw Error("the map flattens " + name() + " (its image has zero area)");
-  if (o < 0) throw Error("the map inverts " + name() + " (its image is clockwise: a reflection or a fold)");
+  const std::string inverts = "the map inverts " + name() + " (its image is clockwise: a reflection or a fold)";
+  if (o < 0 && degree() == 1) throw Error(inverts);
   // A^-1 = [f1 f2]^-1
   const double di = cross(f1, f2);
   image_inv_[0][0] = f2.y / di;
@@ -45,6 +47,10 @@ void MappedTriangle::prepare(const Mesh& solid_mesh, const SolidMap& map, int kk
     affine = shape.affine;
     straight = shape.straight;
     nonlinearity = shape.nonlinearity;
+    // Corner images clockwise: with straight edges the image itself is inverted. A curved map may still be one
+    // to one (a thin triangle whose apex a smooth map moves across the opposite edge's chord): the fold
+    // certificate decides, and the curved method follows the true edges.
+    if (o < 0 && (affine || straight)) throw Error(inverts);
     if (!affine) {
       check_fold(*this);
       const double inv_norm = std::max(std::fabs(image_inv_[0][0]) + std::fabs(image_inv_[0][1]),

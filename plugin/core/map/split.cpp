@@ -121,8 +121,9 @@ bool split_image(const MappedTriangle& mt, int level, double target, int max_dep
     part.nonlinearity = nl;
     const int o = orient2d(part.y[0], part.y[1], part.y[2]);
     if (o <= 0)
-      throw Error("the map folds solid triangle " + std::to_string(mt.k) + " (a sub-triangle's image is " +
-                  (o == 0 ? "flat)" : "clockwise)"));
+      throw Error("the straight image of a part of solid triangle " + std::to_string(mt.k) + " is " +
+                  (o == 0 ? "flat" : "clockwise") +
+                  " although the map does not fold there (its chords cross): the default curved method integrates it");
     parts.push_back(part);
   };
   for (size_t l = 0; l < leaves.size(); ++l) {
