@@ -2,6 +2,17 @@
 
 namespace dlmfsi {
 
+namespace {
+
+// At least size entries. The buffers are read through n_ (the accessors), so they only grow: resizing them to
+// each call's n would zero-fill again whatever a smaller call had cut off (7 % of a curved 3D call, whose pieces
+// carry very different numbers of points).
+void grow(std::vector<double>& v, size_t size) {
+  if (v.size() < size) v.resize(size);
+}
+
+}  // namespace
+
 PointValues3::PointValues3(const Integrand3& integrand) : integrand_(integrand), gradients_(integrand.c1 != 0) {}
 
 void PointValues3::evaluate(int kf, const Point3* eta, int ks, const Point3* xi, int n) {
@@ -9,10 +20,10 @@ void PointValues3::evaluate(int kf, const Point3* eta, int ks, const Point3* xi,
   const size_t nn = static_cast<size_t>(n);
   const size_t fluid_functions = integrand_.fluid.functions().size();
   const size_t multiplier_functions = integrand_.multiplier.functions().size();
-  fluid_value_.resize(nn * fluid_functions);
-  fluid_gradient_.resize(3 * nn * fluid_functions);
-  multiplier_value_.resize(nn * multiplier_functions);
-  multiplier_gradient_.resize(3 * nn * multiplier_functions);
+  grow(fluid_value_, nn * fluid_functions);
+  grow(fluid_gradient_, 3 * nn * fluid_functions);
+  grow(multiplier_value_, nn * multiplier_functions);
+  grow(multiplier_gradient_, 3 * nn * multiplier_functions);
   evaluate_side(integrand_.fluid, integrand_.fluid_space, kf, eta, fluid_value_.data(), fluid_gradient_.data());
   evaluate_side(integrand_.multiplier, integrand_.multiplier_space, ks, xi, multiplier_value_.data(),
                 multiplier_gradient_.data());
@@ -24,11 +35,11 @@ void PointValues3::evaluate_fluid_gradient_sums(int kf, const Point3* eta, const
   const size_t nn = static_cast<size_t>(n);
   const size_t fluid_functions = integrand_.fluid.functions().size();
   const size_t multiplier_functions = integrand_.multiplier.functions().size();
-  fluid_value_.resize(nn * fluid_functions);
-  fluid_gradient_sum_.resize(3 * fluid_functions);
-  multiplier_value_.resize(nn * multiplier_functions);
-  multiplier_gradient_.resize(3 * multiplier_functions);
-  scratch_.resize(multiplier_functions);
+  grow(fluid_value_, nn * fluid_functions);
+  grow(fluid_gradient_sum_, 3 * fluid_functions);
+  grow(multiplier_value_, nn * multiplier_functions);
+  grow(multiplier_gradient_, 3 * multiplier_functions);
+  grow(scratch_, multiplier_functions);
   integrand_.fluid.evaluate_gradient_sums(kf, eta, weight, n, fluid_value_.data(), fluid_gradient_sum_.data());
   // the multiplier's values at the points, its (constant) gradients at the first
   integrand_.multiplier.evaluate_points(ks, xi, n, multiplier_value_.data(), nullptr);
@@ -43,7 +54,7 @@ void PointValues3::evaluate_side(const PolynomialBasis3& poly, const Basis3& spa
     return;
   }
   const int nc = space.components();
-  scratch_.resize(static_cast<size_t>(space.local_dofs()) * nc * 4);
+  grow(scratch_, static_cast<size_t>(space.local_dofs()) * nc * 4);
   const std::vector<int>& functions = poly.functions();
   for (int q = 0; q < n; ++q) {
     space.evaluate(k, at[q], scratch_.data());
