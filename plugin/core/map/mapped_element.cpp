@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string>
 
 #include "errors.hpp"
 #include "map/fold.hpp"
@@ -31,8 +30,11 @@ void MappedTriangle::prepare(const Mesh& solid_mesh, const SolidMap& map, int kk
     throw Error("the map is NaN or Inf at a corner of " + name());
   const int o = orient2d(image[0], image[1], image[2]);
   if (o == 0) throw Error("the map flattens " + name() + " (its image has zero area)");
-  const std::string inverts = "the map inverts " + name() + " (its image is clockwise: a reflection or a fold)";
-  if (o < 0 && degree() == 1) throw Error(inverts);
+  // (the message formed only when it is thrown: prepare runs for every solid triangle of every call)
+  auto inverts = [this] {
+    return Error("the map inverts " + name() + " (its image is clockwise: a reflection or a fold)");
+  };
+  if (o < 0 && degree() == 1) throw inverts();
   // A^-1 = [f1 f2]^-1
   const double di = cross(f1, f2);
   image_inv_[0][0] = f2.y / di;
@@ -50,7 +52,7 @@ void MappedTriangle::prepare(const Mesh& solid_mesh, const SolidMap& map, int kk
     // Corner images clockwise: with straight edges the image itself is inverted. A curved map may still be one
     // to one (a thin triangle whose apex a smooth map moves across the opposite edge's chord): the fold
     // certificate decides, and the curved method follows the true edges.
-    if (o < 0 && (affine || straight)) throw Error(inverts);
+    if (o < 0 && (affine || straight)) throw inverts();
     if (!affine) {
       check_fold(*this);
       const double inv_norm = std::max(std::fabs(image_inv_[0][0]) + std::fabs(image_inv_[0][1]),

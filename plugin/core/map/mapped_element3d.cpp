@@ -27,8 +27,11 @@ void MappedTet::prepare(const Mesh3& solid_mesh, const SolidMap3& map, int kk) {
     if (!finite(image[i])) throw Error("the map is NaN or Inf at a corner of " + name());
   const int o = orient3d(image[0], image[1], image[2], image[3]);
   if (o == 0) throw Error("the map flattens " + name() + " (its image has zero volume)");
-  const std::string inverts = "the map inverts " + name() + " (its image is negatively oriented: a reflection or a fold)";
-  if (o < 0 && degree_ == 1) throw Error(inverts);
+  // (the message formed only when it is thrown: prepare runs for every solid tetrahedron of every call)
+  auto inverts = [this] {
+    return Error("the map inverts " + name() + " (its image is negatively oriented: a reflection or a fold)");
+  };
+  if (o < 0 && degree_ == 1) throw inverts();
   const Point3 f1 = image[1] - image[0], f2 = image[2] - image[0], f3 = image[3] - image[0];
   inverse_of_columns(f1, f2, f3, image_inv_);
   if (degree_ == 1) {  // a P1 map: affine by construction
@@ -39,7 +42,7 @@ void MappedTet::prepare(const Mesh3& solid_mesh, const SolidMap3& map, int kk) {
     // Corner images negatively oriented: with planar faces the image itself is inverted. A curved map may
     // still be one to one (a sliver whose corners a smooth map moves across the opposite face's chord plane):
     // the fold certificate decides, and the reference side splits what is inverted among its straight images.
-    if (o < 0 && (affine || planar)) throw Error(inverts);
+    if (o < 0 && (affine || planar)) throw inverts();
     if (!affine) check_fold(*this);
   }
   if (affine) {
