@@ -115,8 +115,10 @@ void MappedTet::classify() {
       const Point3 xi = w[0] * kCorners[i0] + w[1] * kCorners[i1] + w[2] * kCorners[i2];
       const Point3 x = deviation(xi);
       // Planar face: the image point lies on the plane through the face's corner images (a
-      // parametrisation within the plane that is not affine is allowed).
-      const Point3 n = cross(image[i1] - image[i0], image[i2] - image[i0]);
+      // parametrisation within the plane that is not affine is allowed). The normal from edges in units of
+      // scale: |n|^2 in the caller's units would be the size to the fourth power, beyond the doubles from
+      // about 1e77 (every face then looked planar, and curved maps took the planar path).
+      const Point3 n = cross((1 / scale) * (image[i1] - image[i0]), (1 / scale) * (image[i2] - image[i0]));
       const double off = std::fabs(dot(n, x - image[i0])) / std::sqrt(dot(n, n));
       if (off > tol) planar = false;
     }
