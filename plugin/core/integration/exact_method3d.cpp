@@ -33,7 +33,7 @@ double ExactMethod3::integrate(const MappedTet& mt, LocalBlock& block) {
   const bool reference_side = !mt.planar && map_degree >= 1 && fluid_degree_ >= 0 && multiplier_degree_ >= 0;
   // Curved faces: the reference tetrahedron refined, corners mapped by the true map; on each sub-tetrahedron
   // the jacobian varies 2^level times less. By default 2 levels; 1 on the reference side, whose band term
-  // (PointIntegrator3::gather_reference_side) makes 1 level more accurate than 2 without it, at the same cost.
+  // (PointIntegrator3::gather_band) makes 1 level more accurate than 2 without it, at the same cost.
   const int level = mt.planar ? 0 : (subdivide_ >= 0 ? subdivide_ : reference_side ? 1 : 2);
   int degree;
   if (reference_side) {
@@ -42,10 +42,9 @@ double ExactMethod3::integrate(const MappedTet& mt, LocalBlock& block) {
   } else {
     degree = rule_degree(mt, std::ldexp(1.0, -level), !mt.planar);
   }
-  ClippedImage3 image{mt, degree};
+  const ClippedImage3 image{mt, degree};
   if (mt.affine) return clip(image, mt.image, block);
   if (mt.planar) return clip_or_split(image, reference_subdivision(0)[0].data(), mt.image, block);
-  image.reference_side = reference_side;
   double outside = 0;
   for (const Tet& sub : reference_subdivision(level)) {
     Point3 img[4];

@@ -12,12 +12,12 @@
 // the preimages tiling T exactly and the integrand a polynomial of degree m + f d (multiplier, fluid, map),
 // integrated exactly. Only which fluid tetrahedron's polynomial is used where differs from the exact
 // integral: in the band between A_i^-1 and X^-1 of a fluid face, of width delta = O(h_i^2) (h_i: T_i's
-// size). The band is added to first order (PointIntegrator3::gather_reference_side), so the error is 0 for a
-// fluid field polynomial over the image (the same polynomial on every K it meets), O(delta^3) per unit face
-// area for a continuous one, O(delta^2) where it jumps (a gradient). A straight image (or
-// sub-tetrahedron) on which the map is far from affine, near a fold, is split in fluid coordinates into
-// nearly affine parts (split3d.hpp), each with the rule of its own nonlinearity (or, on the reference side,
-// the same polynomial degree). The volume outside the fluid mesh is the image's volume less the pieces'.
+// size). The band is added in columns along a solid axis (PointIntegrator3::gather_band), exact for a kink
+// along one fluid plane; where fluid faces meet inside the solid, O(delta^2) per unit length is left. On the
+// reference side a straight image is split only where it is not positively oriented, in reference coordinates
+// (split_reference_side); elsewhere a straight image (or sub-tetrahedron) on which the map is far from affine,
+// near a fold, is split in fluid coordinates into nearly affine parts (split3d.hpp), each with the rule of its
+// own nonlinearity. The volume outside the fluid mesh is the image's volume less the pieces'.
 #pragma once
 #include <memory>
 #include <utility>

@@ -194,17 +194,18 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
 // going into the sub-tetrahedron carry both terms (-f_K here, +f_K' of the fluid tetrahedron K' across, added by
 // add_across), those going out nothing (the sub-tetrahedron across does them with its own map; beyond the solid
 // there is nothing). Exact signs on the sub-tetrahedron's image corners decide.
-int PointIntegrator3::fluid_plane(const ClippedImage3& image, int kf, unsigned common, bool& on_boundary) const {
+int PointIntegrator3::fluid_plane(const ClippedImage3& image, const Point3 (&corner)[4], unsigned common,
+                                  bool& on_boundary) const {
   const unsigned fluid_planes = common >> 4 & 0xFu;
   on_boundary = false;
   if (fluid_planes != 0 && !fluid_) return __builtin_ctz(fluid_planes);
   if (!fluid_) return -1;
-  Point3 corner[4];
-  fluid_->mesh().corners(kf, corner);
-  // orient3d of kf's face j (opposite vertex j) against p, signed so that kf's vertex j is positive
+  // orient3d of kf's face j (opposite vertex j, corners j + 1, j + 2, j + 3 mod 4) against p, signed so that
+  // kf's vertex j is positive: kf is positively oriented, and (j + 1, j + 2, j + 3, j) is an odd permutation of
+  // (0, 1, 2, 3) for even j, an even one for odd j
   auto side = [&corner](int j, Point3 p) {
-    const Point3 &a = corner[(j + 1) & 3], &b = corner[(j + 2) & 3], &c = corner[(j + 3) & 3];
-    return orient3d(a, b, c, p) * orient3d(a, b, c, corner[j]);
+    const int s = orient3d(corner[(j + 1) & 3], corner[(j + 2) & 3], corner[(j + 3) & 3], p);
+    return j & 1 ? s : -s;
   };
   if (fluid_planes != 0) {  // on the sub-tetrahedron's boundary iff no corner of its image lies beyond the plane
     const int j = __builtin_ctz(fluid_planes);
@@ -268,13 +269,16 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
   // s: f is a polynomial of degree p in s)
   const auto& face_rule = triangle_rule(std::min(60, 2 * image.degree + 2));
   const LineRule& along = gauss_legendre_rule(image.degree / 2 + 1);
+  Point3 corner[4];  // kf's, for fluid_plane
+  if (fluid_) fluid_->mesh().corners(kf, corner);
   for (int f = 0; f < piece.faces; ++f) {
     const int s = piece.face_start[f], e = piece.face_start[f + 1];
     unsigned common = 0xFFu;
     for (int i = s; i < e; ++i) common &= piece.planes[piece.face_index[i]];
     bool on_boundary = false;
-    const int j = fluid_plane(image, kf, common, on_boundary);
+    const int j = fluid_plane(image, corner, common, on_boundary);
     if (j < 0) continue;
+    const int across = on_boundary ? fluid_->mesh().neighbours[kf][j] : -1;  // the fluid tetrahedron across
     const Point3 n = j == 0 ? r1 + r2 + r3 : -1.0 * (j == 1 ? r1 : j == 2 ? r2 : r3);
     const Point3 w{dot(ey[0], n), dot(ey[1], n), dot(ey[2], n)};  // E_y^T n
     // z = E_xi^-T w: z . ex[i] = w_i, by the cofactors of E_xi
@@ -336,13 +340,16 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
         const double l = disc >= 0 ? -2 * c0 / (c1 + std::sqrt(disc)) : -c0 / c1;
         if (on_boundary && !(l < 0)) continue;
         const double column = l * height * area * rp.weight;
-        const int across = on_boundary ? fluid_->mesh().neighbours[kf][j] : -1;
         for (size_t k = 0; k < along.nodes.size(); ++k) {
           const double t = along.nodes[k] * l;
           const Point3 at = xi + t * d;
-          Point3 xt = x0 + t * dd + (0.5 * t * t) * dhd;
-          Point3 Dt[3] = {D[0] + t * hd[0], D[1] + t * hd[1], D[2] + t * hd[2]};
-          if (!quadratic) reference_value(image, at, xt, Dt);
+          Point3 xt, Dt[3];
+          if (quadratic) {
+            xt = x0 + t * dd + (0.5 * t * t) * dhd;
+            for (int c = 0; c < 3; ++c) Dt[c] = D[c] + t * hd[c];
+          } else {
+            reference_value(image, at, xt, Dt);
+          }
           add_reference_point(image, kf, at, xt, Dt, along.weights[k] * column);
           if (across >= 0) {
             AcrossPoint& p = across_.emplace_back();

@@ -52,9 +52,10 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // planes' true preimages; xi_corner the piece's corners taken back, solid_det 6 |solid tetrahedron|.
   void gather_band(const ClippedImage3& image, int kf, const Piece3& piece, const Point3* xi_corner,
                    double solid_det);
-  // The face of kf (opposite its vertex j) whose plane holds the piece's face whose vertices share the planes
-  // common (Piece3::planes' bits), or -1; on_boundary when that face is on the sub-tetrahedron's boundary.
-  int fluid_plane(const ClippedImage3& image, int kf, unsigned common, bool& on_boundary) const;
+  // The face of kf (corner: its vertices; j: the face opposite vertex j) whose plane holds the piece's face
+  // whose vertices share the planes common (Piece3::planes' bits), or -1; on_boundary when that face is on the
+  // sub-tetrahedron's boundary.
+  int fluid_plane(const ClippedImage3& image, const Point3 (&corner)[4], unsigned common, bool& on_boundary) const;
   // On the reference side: X at xi (relative to image.origin when it is not 0) and d[i] = dX/dxi_i.
   void reference_value(const ClippedImage3& image, Point3 xi, Point3& x, Point3 (&d)[3]) const;
   // Adds reference point xi where X is x and dX/dxi is d, with its weight; throws where the map folds.

@@ -109,19 +109,21 @@ void MappedTet::classify() {
     }
     return x;
   };
-  for (int f = 0; f < 4; ++f)
+  for (int f = 0; f < 4; ++f) {
+    const int i0 = (f + 1) % 4, i1 = (f + 2) % 4, i2 = (f + 3) % 4;
+    // Planar face: its image points lie on the plane through the face's corner images (a parametrisation
+    // within the plane that is not affine is allowed). The normal from edges in units of scale: |n|^2 in the
+    // caller's units would be the size to the fourth power, beyond the doubles from about 1e77 (every face then
+    // looked planar, and curved maps took the planar path).
+    const Point3 n = cross((1 / scale) * (image[i1] - image[i0]), (1 / scale) * (image[i2] - image[i0]));
+    const double length = std::sqrt(dot(n, n));
     for (const auto& w : face_weights) {
-      const int i0 = (f + 1) % 4, i1 = (f + 2) % 4, i2 = (f + 3) % 4;
       const Point3 xi = w[0] * kCorners[i0] + w[1] * kCorners[i1] + w[2] * kCorners[i2];
       const Point3 x = deviation(xi);
-      // Planar face: the image point lies on the plane through the face's corner images (a
-      // parametrisation within the plane that is not affine is allowed). The normal from edges in units of
-      // scale: |n|^2 in the caller's units would be the size to the fourth power, beyond the doubles from
-      // about 1e77 (every face then looked planar, and curved maps took the planar path).
-      const Point3 n = cross((1 / scale) * (image[i1] - image[i0]), (1 / scale) * (image[i2] - image[i0]));
-      const double off = std::fabs(dot(n, x - image[i0])) / std::sqrt(dot(n, n));
+      const double off = std::fabs(dot(n, x - image[i0])) / length;
       if (off > tol) planar = false;
     }
+  }
   for (Point3 xi : {Point3{0.25, 0.25, 0.25}, Point3{0.1, 0.2, 0.3}, Point3{0.5, 0.15, 0.2}}) deviation(xi);
 }
 
