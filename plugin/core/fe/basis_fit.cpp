@@ -71,7 +71,7 @@ void BasisFit::derive(const std::vector<double>& coefficients, std::vector<doubl
   derivative.assign(count * 2 * nm1, 0.0);
   for (size_t f = 0; f < count; ++f) {
     const double* c = &coefficients[f * nm_];
-    double* d1 = &derivative[f * 2 * nm1];
+    double* d1 = derivative.data() + f * 2 * nm1;  // empty for degree 0 (no derivative term is written)
     double* d2 = d1 + nm1;
     int m = 0;
     for (int t = 0; t <= degree_; ++t)
