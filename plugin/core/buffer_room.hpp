@@ -109,4 +109,24 @@ class RawRoom {
   size_t size_ = 0;
 };
 
+// The same in a HugeBuffer (2 MiB pages for large rooms): kept by a caller whose buffers are rebuilt on
+// every call at the same size (a map's coefficients in a time loop), so that they are not fresh pages, which
+// the system must clear, every time.
+template <class T>
+class HugeRoom {
+ public:
+  T* room(size_t n) {
+    if (size_ < n) {
+      data_.reset();
+      size_ = n + n / 4;
+      data_ = huge_buffer<T>(size_);
+    }
+    return data_.get();
+  }
+
+ private:
+  HugeBuffer<T> data_;
+  size_t size_ = 0;
+};
+
 }  // namespace dlmfsi

@@ -234,6 +234,12 @@ dlmfsi::CouplingAssembly& assembly() {
   return *kept;
 }
 
+// The memory of the map's coefficients, kept from call to call as the assembly's.
+dlmfsi::HugeRoom<double>& map_room() {
+  static dlmfsi::HugeRoom<double>* kept = new dlmfsi::HugeRoom<double>;
+  return *kept;
+}
+
 class DlmfsiOp : public E_F0mps {
  public:
   typedef newpMatrice_Creuse<double> Result;
@@ -373,7 +379,7 @@ const dlmfsi::CsrMatrix& DlmfsiOp::assemble(Stack stack, const dlmfsi::CouplingO
   const dlmfsi::Basis* kept_y = cache.map_space(sy);
   const dlmfsi::FieldMap map(solid.mesh(), kept_x ? *kept_x : map_x_basis, &cx[0], px.second,
                              kept_y ? *kept_y : map_y_basis, &cy[0], py.second, fit_x, fit_y,
-                             kept_x && kept_y ? opt.threads : 1);
+                             kept_x && kept_y ? opt.threads : 1, &map_room());
   dlmfsi::CouplingReport report;
   const dlmfsi::CsrMatrix& b = assembly().assemble(fluid, solid, map, opt, &report);
   if (verbosity > 1) cout << report.summary() << endl;

@@ -137,6 +137,12 @@ dlmfsi::CouplingAssembly3& assembly3() {
   return *kept;
 }
 
+// The memory of the map's coefficients, kept from call to call as the assembly's.
+dlmfsi::HugeRoom<double>& map_room3() {
+  static dlmfsi::HugeRoom<double>* kept = new dlmfsi::HugeRoom<double>;
+  return *kept;
+}
+
 class Dlmfsi3Op : public E_F0mps {
  public:
   typedef newpMatrice_Creuse<double> Result;
@@ -261,7 +267,7 @@ const dlmfsi::CsrMatrix& Dlmfsi3Op::assemble(Stack stack, const dlmfsi::Coupling
       spaces[a] = k;
       ++kept;
     }
-  const dlmfsi::FieldMap3 xmap(solid.mesh(), spaces, values, comps, fits, kept == 3 ? opt.threads : 1);
+  const dlmfsi::FieldMap3 xmap(solid.mesh(), spaces, values, comps, fits, kept == 3 ? opt.threads : 1, &map_room3());
   dlmfsi::CouplingReport report;
   const dlmfsi::CsrMatrix& b = assembly3().assemble(fluid, solid, xmap, opt, &report);
   if (verbosity > 1) cout << report.summary() << endl;

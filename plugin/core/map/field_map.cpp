@@ -28,7 +28,7 @@ int FieldMap::fit_degree(const Basis& space_x, int comp_x, const Basis& space_y,
 
 FieldMap::FieldMap(const Mesh& solid, const Basis& space_x, const double* coef_x, int comp_x, const Basis& space_y,
                    const double* coef_y, int comp_y, const PolynomialBasis* fit_x, const PolynomialBasis* fit_y,
-                   int threads) {
+                   int threads, HugeRoom<double>* room) {
   part_[0] = {&space_x, coef_x, comp_x, 0, 0};
   part_[1] = {&space_y, coef_y, comp_y, 0, 0};
   degree_ = fit_degree(space_x, comp_x, space_y, comp_y);
@@ -54,18 +54,18 @@ FieldMap::FieldMap(const Mesh& solid, const Basis& space_x, const double* coef_x
     }
   }
   const int nm = monomial_count(degree_), size = solid.size();
-  monomial_coef_ = huge_buffer<double>(static_cast<size_t>(size) * 2 * nm);
+  monomial_coef_ = (room ? *room : own_room_).room(static_cast<size_t>(size) * 2 * nm);
   // X and Y on one space, component and fit (two functions of one scalar space): both in one pass.
   const bool together = fit[0] == fit[1] && part_[0].space == part_[1].space && part_[0].comp == part_[1].comp;
   const double* values[2] = {part_[0].coef, part_[1].coef};
   on_shares(threads_for(threads, size, 8192), size, [&](int first, int last) {
     if (together) {
-      field_monomials(*part_[0].space, values, 2, *fit[0], nm, first, last, monomial_coef_.get(), 0,
+      field_monomials(*part_[0].space, values, 2, *fit[0], nm, first, last, monomial_coef_, 0,
                       2 * static_cast<size_t>(nm));
       return;
     }
     for (int a = 0; a < 2; ++a)
-      field_monomials(*part_[a].space, part_[a].coef, *fit[a], nm, first, last, monomial_coef_.get(),
+      field_monomials(*part_[a].space, part_[a].coef, *fit[a], nm, first, last, monomial_coef_,
                       static_cast<size_t>(a) * nm, 2 * static_cast<size_t>(nm));
   });
 }

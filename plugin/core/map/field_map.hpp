@@ -15,12 +15,14 @@ namespace dlmfsi {
 // coefficients of X on every solid triangle are computed once, here, from the spaces' fits on the map's
 // components: fit_x and fit_y when the caller keeps them across calls (PolynomialBasis(space, solid,
 // fit_degree(...), {comp})), otherwise fitted here. With threads > 1 they are computed on that many threads:
-// the spaces' dofs() must then be safe to call from several threads at once.
+// the spaces' dofs() must then be safe to call from several threads at once. They are kept in room when the
+// caller gives one (and keeps it, for one map at a time, past this map's life: a time loop's maps then reuse
+// its memory).
 class FieldMap : public SolidMap {
  public:
   FieldMap(const Mesh& solid, const Basis& space_x, const double* coef_x, int comp_x, const Basis& space_y,
            const double* coef_y, int comp_y, const PolynomialBasis* fit_x = nullptr,
-           const PolynomialBasis* fit_y = nullptr, int threads = 1);
+           const PolynomialBasis* fit_y = nullptr, int threads = 1, HugeRoom<double>* room = nullptr);
   // The degree the map is fitted to: the higher polynomial degree of the two components, or -1 when one is
   // not polynomial or the degree lies outside 1..6 (the map is then evaluated through the spaces). Throws
   // Error for a component out of range.
@@ -40,7 +42,8 @@ class FieldMap : public SolidMap {
   };
   Part part_[2];
   int degree_ = -1;
-  HugeBuffer<double> monomial_coef_;  // per triangle: x then y coefficients
+  HugeRoom<double> own_room_;         // when the caller gives no room
+  double* monomial_coef_ = nullptr;  // per triangle: x then y coefficients
 };
 
 }  // namespace dlmfsi

@@ -31,7 +31,7 @@ int FieldMap3::fit_degree(const Basis3* const space[3], const int comp[3]) {
 }
 
 FieldMap3::FieldMap3(const Mesh3& solid, const Basis3* const space[3], const double* const coef[3], const int comp[3],
-                     const PolynomialBasis3* const fit[3], int threads) {
+                     const PolynomialBasis3* const fit[3], int threads, HugeRoom<double>* room) {
   for (int a = 0; a < 3; ++a) {
     part_[a] = {space[a], coef[a], comp[a], 0, 0};
     space[a]->component_dofs(comp[a], part_[a].first, part_[a].last);
@@ -87,10 +87,10 @@ FieldMap3::FieldMap3(const Mesh3& solid, const Basis3* const space[3], const dou
     for (int k = 0; k < size; ++k)
       if (!poly.shared(k)) corner_exact_[k] = 0;
   }
-  monomial_coef_ = huge_buffer<double>(static_cast<size_t>(size) * 3 * nm);
+  monomial_coef_ = (room ? *room : own_room_).room(static_cast<size_t>(size) * 3 * nm);
   on_shares(threads_for(threads, size, 8192), size, [&](int first, int last) {
     for (int a = 0; a < 3; ++a)
-      field_monomials(*part_[a].space, part_[a].coef, *used[a], nm, first, last, monomial_coef_.get(),
+      field_monomials(*part_[a].space, part_[a].coef, *used[a], nm, first, last, monomial_coef_,
                       static_cast<size_t>(a) * nm, 3 * static_cast<size_t>(nm));
   });
   for (int a = 0; a < 3; ++a)
