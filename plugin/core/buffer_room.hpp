@@ -91,29 +91,11 @@ void room(std::vector<T, Allocator>& v, size_t n) {
 }
 
 // The same for values that are each written before they are read: the room is left uninitialized (a vector's
-// resize would zero it on every growth and every first call).
+// resize would zero it on every growth and every first call), in a HugeBuffer (2 MiB pages for a large room).
+// Kept by a caller whose buffers are rebuilt on every call at about the same size (a map's coefficients in a
+// time loop), it spares the fresh pages that the system would clear every time.
 template <class T>
 class RawRoom {
- public:
-  T* room(size_t n) {
-    if (size_ < n) {
-      data_.reset();
-      size_ = n + n / 4;
-      data_.reset(new T[size_]);
-    }
-    return data_.get();
-  }
-
- private:
-  std::unique_ptr<T[]> data_;
-  size_t size_ = 0;
-};
-
-// The same in a HugeBuffer (2 MiB pages for large rooms): kept by a caller whose buffers are rebuilt on
-// every call at the same size (a map's coefficients in a time loop), so that they are not fresh pages, which
-// the system must clear, every time.
-template <class T>
-class HugeRoom {
  public:
   T* room(size_t n) {
     if (size_ < n) {

@@ -235,8 +235,8 @@ dlmfsi::CouplingAssembly& assembly() {
 }
 
 // The memory of the map's coefficients, kept from call to call as the assembly's.
-dlmfsi::HugeRoom<double>& map_room() {
-  static dlmfsi::HugeRoom<double>* kept = new dlmfsi::HugeRoom<double>;
+dlmfsi::RawRoom<double>& map_room() {
+  static dlmfsi::RawRoom<double>* kept = new dlmfsi::RawRoom<double>;
   return *kept;
 }
 

@@ -138,8 +138,8 @@ dlmfsi::CouplingAssembly3& assembly3() {
 }
 
 // The memory of the map's coefficients, kept from call to call as the assembly's.
-dlmfsi::HugeRoom<double>& map_room3() {
-  static dlmfsi::HugeRoom<double>* kept = new dlmfsi::HugeRoom<double>;
+dlmfsi::RawRoom<double>& map_room3() {
+  static dlmfsi::RawRoom<double>* kept = new dlmfsi::RawRoom<double>;
   return *kept;
 }
 

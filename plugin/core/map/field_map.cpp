@@ -28,7 +28,7 @@ int FieldMap::fit_degree(const Basis& space_x, int comp_x, const Basis& space_y,
 
 FieldMap::FieldMap(const Mesh& solid, const Basis& space_x, const double* coef_x, int comp_x, const Basis& space_y,
                    const double* coef_y, int comp_y, const PolynomialBasis* fit_x, const PolynomialBasis* fit_y,
-                   int threads, HugeRoom<double>* room) {
+                   int threads, RawRoom<double>* room) {
   part_[0] = {&space_x, coef_x, comp_x, 0, 0};
   part_[1] = {&space_y, coef_y, comp_y, 0, 0};
   degree_ = fit_degree(space_x, comp_x, space_y, comp_y);

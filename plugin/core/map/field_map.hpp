@@ -22,7 +22,7 @@ class FieldMap : public SolidMap {
  public:
   FieldMap(const Mesh& solid, const Basis& space_x, const double* coef_x, int comp_x, const Basis& space_y,
            const double* coef_y, int comp_y, const PolynomialBasis* fit_x = nullptr,
-           const PolynomialBasis* fit_y = nullptr, int threads = 1, HugeRoom<double>* room = nullptr);
+           const PolynomialBasis* fit_y = nullptr, int threads = 1, RawRoom<double>* room = nullptr);
   // The degree the map is fitted to: the higher polynomial degree of the two components, or -1 when one is
   // not polynomial or the degree lies outside 1..6 (the map is then evaluated through the spaces). Throws
   // Error for a component out of range.
@@ -42,7 +42,7 @@ class FieldMap : public SolidMap {
   };
   Part part_[2];
   int degree_ = -1;
-  HugeRoom<double> own_room_;         // when the caller gives no room
+  RawRoom<double> own_room_;         // when the caller gives no room
   double* monomial_coef_ = nullptr;  // per triangle: x then y coefficients
 };
 

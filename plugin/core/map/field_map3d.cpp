@@ -31,7 +31,7 @@ int FieldMap3::fit_degree(const Basis3* const space[3], const int comp[3]) {
 }
 
 FieldMap3::FieldMap3(const Mesh3& solid, const Basis3* const space[3], const double* const coef[3], const int comp[3],
-                     const PolynomialBasis3* const fit[3], int threads, HugeRoom<double>* room) {
+                     const PolynomialBasis3* const fit[3], int threads, RawRoom<double>* room) {
   for (int a = 0; a < 3; ++a) {
     part_[a] = {space[a], coef[a], comp[a], 0, 0};
     space[a]->component_dofs(comp[a], part_[a].first, part_[a].last);

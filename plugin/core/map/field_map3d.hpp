@@ -21,7 +21,7 @@ namespace dlmfsi {
 class FieldMap3 : public SolidMap3 {
  public:
   FieldMap3(const Mesh3& solid, const Basis3* const space[3], const double* const coef[3], const int comp[3],
-            const PolynomialBasis3* const fit[3] = nullptr, int threads = 1, HugeRoom<double>* room = nullptr);
+            const PolynomialBasis3* const fit[3] = nullptr, int threads = 1, RawRoom<double>* room = nullptr);
   // The degree the map is fitted to: the highest polynomial degree of the three components, or -1 when one
   // is not polynomial or the degree lies outside 1..6. Throws Error for a component out of range.
   static int fit_degree(const Basis3* const space[3], const int comp[3]);
@@ -38,8 +38,8 @@ class FieldMap3 : public SolidMap3 {
   };
   Part part_[3];
   int degree_ = -1;
-  HugeRoom<double> own_room_;           // when the caller gives no room
-  double* monomial_coef_ = nullptr;    // per tetrahedron: x, y then z coefficients
+  RawRoom<double> own_room_;         // when the caller gives no room
+  double* monomial_coef_ = nullptr;  // per tetrahedron: x, y then z coefficients
   // Per part and corner of the reference tetrahedron: the local dof whose basis function is 1 there while
   // the part's others are 0 (a Lagrange dof at the vertex), or -1; valid on tetrahedra of the shared fit.
   int corner_dof_[3][4];
