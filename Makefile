@@ -8,7 +8,7 @@ OUT ?= results
 QUICK ?= 0
 FF := bin/ff
 
-.PHONY: all deps build test compare bench evidence sanitize fuzz fresh-check clean supermesh-compare install uninstall
+.PHONY: all deps build test compare bench evidence sanitize sanitize-scripts fuzz fresh-check clean supermesh-compare install uninstall
 
 all: build
 
@@ -71,6 +71,12 @@ sanitize: deps
 	@cmake --build $(BUILD)-sanitize -j $(JOBS)
 	cd $(BUILD)-sanitize && DLMFSI_FUZZ_PAIRS=$(SANITIZE_FUZZ_PAIRS) ctest --output-on-failure -j $(JOBS)
 
+# The plugins built with AddressSanitizer + UndefinedBehaviorSanitizer and every FreeFEM script test run on them,
+# the runtimes preloaded into FreeFem++-nw (scripts/sanitize-scripts; about 10 minutes on 2 cores: 6 to build,
+# 5 to run).
+sanitize-scripts: deps
+	@JOBS=$(JOBS) scripts/sanitize-scripts $(BUILD)-asan
+
 # libFuzzer targets for the clipper and the fluid search (tests/fuzz/fuzz_clip.cpp) and for the
 # tetrahedron clipper against GMP volumes and the 3D search (tests/fuzz/fuzz_clip3d.cpp), built with clang, AddressSanitizer
 # and UndefinedBehaviorSanitizer, each run for FUZZ_TIME seconds on its corpus kept in $(BUILD)-fuzz/corpus
@@ -115,4 +121,4 @@ uninstall:
 	@PREFIX=$(PREFIX) DESTDIR=$(DESTDIR) scripts/uninstall
 
 clean:
-	rm -rf $(BUILD) $(BUILD)-sanitize $(BUILD)-fuzz $(BUILD).configure.log
+	rm -rf $(BUILD) $(BUILD)-sanitize $(BUILD)-asan $(BUILD)-asan.configure.log $(BUILD)-fuzz $(BUILD).configure.log
