@@ -8,7 +8,8 @@ OUT ?= results
 QUICK ?= 0
 FF := bin/ff
 
-.PHONY: all deps build test compare bench evidence sanitize sanitize-scripts fuzz fresh-check clean supermesh-compare install uninstall
+.PHONY: all deps build test compare bench evidence sanitize sanitize-scripts fuzz fresh-check clean supermesh-compare \
+	install uninstall
 
 all: build
 
