@@ -219,6 +219,17 @@ const std::vector<RulePoint3>& tetrahedron_rule(int degree) {
   return rules[degree];
 }
 
+const LineRule& line_rule(int degree) {
+  constexpr int kMax = 40;
+  if (degree < 0 || degree > kMax) throw Error("quadrature degree " + std::to_string(degree) + " outside [0, 40]");
+  static LineRule rules[kMax + 1];
+  static std::once_flag once;
+  std::call_once(once, [] {
+    for (int d = 0; d <= kMax; ++d) gauss_legendre(d / 2 + 1, rules[d].nodes, rules[d].weights);
+  });
+  return rules[degree];
+}
+
 const std::vector<RulePoint>& triangle_rule(int degree) {
   constexpr int kMax = 60;
   if (degree < 0 || degree > kMax) throw Error("quadrature degree " + std::to_string(degree) + " outside [0, 60]");

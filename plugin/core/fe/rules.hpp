@@ -23,6 +23,13 @@ const std::vector<RulePoint>& triangle_rule(int degree);
 // Gauss-Legendre nodes and weights on [0, 1], n points (exact for degree 2n-1).
 void gauss_legendre(int n, std::vector<double>& nodes, std::vector<double>& weights);
 
+// Gauss-Legendre on [0, 1] exact for polynomials of degree <= degree (0 <= degree <= 40): degree / 2 + 1 points,
+// formed once. Weights sum to 1.
+struct LineRule {
+  std::vector<double> nodes, weights;
+};
+const LineRule& line_rule(int degree);
+
 // Gauss-Jacobi nodes and weights on [0, 1] for the weight (1 - u)^alpha, n points:
 // int_0^1 (1 - u)^alpha p(u) du = sum w_i p(u_i) for polynomials p of degree <= 2n - 1 (Golub-Welsch: the
 // eigenvalues and first eigenvector components of the Jacobi matrix of the recurrence).

@@ -121,24 +121,6 @@ double PointIntegrator3::gather(const ClippedImage3& image, int kf, const Piece3
   return volume;
 }
 
-namespace {
-
-struct LineRule {
-  std::vector<double> nodes, weights;
-};
-
-// Gauss-Legendre on [0, 1] with n points (1 <= n <= 21), formed once.
-const LineRule& gauss_legendre_rule(int n) {
-  static const std::vector<LineRule> rules = [] {
-    std::vector<LineRule> r(22);
-    for (int k = 1; k < 22; ++k) gauss_legendre(k, r[k].nodes, r[k].weights);
-    return r;
-  }();
-  return rules[std::min(21, std::max(1, n))];
-}
-
-}  // namespace
-
 // Inline (used here only): a call per point through the plugin's symbol table cost 12 % of a curved call.
 inline void PointIntegrator3::reference_value(const ClippedImage3& image, Point3 xi, Point3& x, Point3 (&d)[3]) const {
   const MappedTet& mt = image.tetrahedron;
@@ -268,7 +250,7 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
   // the face's rule, for int_0^l f (degree 2 p + 2 where l is quadratic), and the column's (xi + s d is affine in
   // s: f is a polynomial of degree p in s)
   const auto& face_rule = triangle_rule(std::min(60, 2 * image.degree + 2));
-  const LineRule& along = gauss_legendre_rule(image.degree / 2 + 1);
+  const LineRule& along = line_rule(image.degree);
   Point3 corner[4];  // kf's, for fluid_plane
   if (fluid_) fluid_->mesh().corners(kf, corner);
   for (int f = 0; f < piece.faces; ++f) {
