@@ -66,10 +66,7 @@ int ExactMethod::rule_degree(double nonlinearity) {
 double ExactMethod::clip(const ClippedImage& image, const Point img[3], LocalBlock& block) {
   const int o = orient2d(img[0], img[1], img[2]);
   // Folds are refused before (MappedTriangle::prepare: the corners, the fold certificate): here the chords cross.
-  if (o <= 0)
-    throw Error("the straight image of a part of solid triangle " + std::to_string(image.triangle.k) + " is " +
-                (o == 0 ? "flat" : "clockwise") +
-                " although the map does not fold there (its chords cross): the default curved method integrates it");
+  if (o <= 0) throw crossed_chords(image.triangle.k, o);
   PieceIntegrator& integrator = image.triangle.affine && affine_ ? *affine_ : *general_;
   double covered = 0;
   auto add_piece = [&](const ClippedImage& in, int kf, const Piece& piece) {

@@ -36,6 +36,12 @@ struct Tri {
 
 }  // namespace
 
+Error crossed_chords(int k, int orientation) {
+  return Error("the straight image of a part of solid triangle " + std::to_string(k) + " is " +
+               (orientation == 0 ? "flat" : "clockwise") +
+               " although the map does not fold there (its chords cross): the default curved method integrates it");
+}
+
 bool split_image(const MappedTriangle& mt, int level, double target, int max_depth, int max_leaves,
                  std::vector<MapPart>& parts) {
   parts.clear();
@@ -120,10 +126,7 @@ bool split_image(const MappedTriangle& mt, int level, double target, int max_dep
     }
     part.nonlinearity = nl;
     const int o = orient2d(part.y[0], part.y[1], part.y[2]);
-    if (o <= 0)
-      throw Error("the straight image of a part of solid triangle " + std::to_string(mt.k) + " is " +
-                  (o == 0 ? "flat" : "clockwise") +
-                  " although the map does not fold there (its chords cross): the default curved method integrates it");
+    if (o <= 0) throw crossed_chords(mt.k, o);
     parts.push_back(part);
   };
   for (size_t l = 0; l < leaves.size(); ++l) {

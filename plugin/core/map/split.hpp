@@ -20,6 +20,7 @@
 #pragma once
 #include <vector>
 
+#include "errors.hpp"
 #include "map/mapped_element.hpp"
 
 namespace dlmfsi {
@@ -31,9 +32,13 @@ struct MapPart {
 };
 
 // Fills parts; returns false when a leaf still above target needs more than max_depth further halvings or
-// the leaves would exceed max_leaves (the map nearly folds). Throws Error when a part's image is flat or
-// clockwise although its leaf is nearly affine (a fold).
+// the leaves would exceed max_leaves (the map nearly folds). Throws crossed_chords when a part's image is flat
+// or clockwise.
 bool split_image(const MappedTriangle& mt, int level, double target, int max_depth, int max_leaves,
                  std::vector<MapPart>& parts);
+
+// The error for a straight image of a part of solid triangle k that is flat (orientation 0) or clockwise while
+// the map does not fold there (MappedTriangle::prepare refuses folds first): its chords cross.
+Error crossed_chords(int k, int orientation);
 
 }  // namespace dlmfsi
