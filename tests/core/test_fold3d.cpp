@@ -373,5 +373,59 @@ TEST(TetrahedronMap, AFullQuadraticAndItsJacobianMatchTheFormula) {
     EXPECT_NEAR(d.x, x.x - x0.x, 1e-13);
     EXPECT_NEAR(d.y, x.y - x0.y, 1e-13);
     EXPECT_NEAR(d.z, x.z - x0.z, 1e-13);
+    // X alone, and the displacement alone: the formula's, and bit for bit what the derivatives' sums give
+    const Point3 p = tm.position(xi), dp = tm.displacement_position(xi);
+    EXPECT_NEAR(p.x, x.x, 1e-13);
+    EXPECT_NEAR(p.y, x.y, 1e-13);
+    EXPECT_NEAR(p.z, x.z, 1e-13);
+    EXPECT_TRUE(p.x == v.x.x && p.y == v.x.y && p.z == v.x.z);
+    EXPECT_TRUE(dp.x == d.x && dp.y == d.y && dp.z == d.z);
+  }
+}
+
+// The same for a cubic map (the general sums): X alone and the displacement alone against the formula, and bit
+// for bit against the value the derivatives' sums give.
+TEST(TetrahedronMap, PositionOfACubicMatchesTheFormula) {
+  const Formula cubic = [](Point3 s, Point3& x, double j[3][3]) {
+    x = {s.x + 0.1 * s.x * s.x * s.x, s.y + 0.2 * s.y * s.y * s.z, s.z - 0.15 * s.x * s.y * s.z + 0.05 * s.z * s.z};
+    const double jj[3][3] = {{1 + 0.3 * s.x * s.x, 0, 0},
+                             {0, 1 + 0.4 * s.y * s.z, 0.2 * s.y * s.y},
+                             {-0.15 * s.y * s.z, -0.15 * s.x * s.z, 1 - 0.15 * s.x * s.y + 0.1 * s.z}};
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) j[a][b] = jj[a][b];
+  };
+  Mesh3 solid;
+  solid.vertices = {{0.5, -0.3, 0.2}, {1.1, -0.2, 0.25}, {0.6, 0.4, 0.1}, {0.55, -0.1, 0.9}};
+  solid.tetrahedra = {{0, 1, 2, 3}};
+  solid.build_adjacency();
+  const FormulaMap3 map(solid, cubic, 3);
+  TetrahedronMap tm;
+  tm.fit(solid, map, 0);
+  ASSERT_EQ(tm.fitted_degree(), 3);
+  Point3 corner[4];
+  solid.corners(0, corner);
+  Point3 x0;
+  double j0[3][3];
+  cubic(corner[0], x0, j0);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int n = 0; n < 50; ++n) {
+    Point3 xi{u(rng), u(rng), u(rng)};
+    if (xi.x + xi.y + xi.z > 1) xi = {xi.x / 3, xi.y / 3, xi.z / 3};
+    Point3 x;
+    double j[3][3];
+    cubic(from_reference(corner, xi), x, j);
+    const Point3 p = tm.position(xi), dp = tm.displacement_position(xi);
+    EXPECT_NEAR(p.x, x.x, 1e-13);
+    EXPECT_NEAR(p.y, x.y, 1e-13);
+    EXPECT_NEAR(p.z, x.z, 1e-13);
+    EXPECT_NEAR(dp.x, x.x - x0.x, 1e-13);
+    EXPECT_NEAR(dp.y, x.y - x0.y, 1e-13);
+    EXPECT_NEAR(dp.z, x.z - x0.z, 1e-13);
+    Point3 v, dv[3], d, dd[3];
+    tm.reference_derivatives(xi, v, dv);
+    tm.displacement(xi, d, dd);
+    EXPECT_TRUE(p.x == v.x && p.y == v.y && p.z == v.z);
+    EXPECT_TRUE(dp.x == d.x && dp.y == d.y && dp.z == d.z);
   }
 }

@@ -49,7 +49,7 @@ double ExactMethod3::integrate(const MappedTet& mt, LocalBlock& block) {
   for (const Tet& sub : reference_subdivision(level)) {
     Point3 img[4];
     for (int i = 0; i < 4; ++i) {
-      img[i] = mt.at(sub[i]).x;
+      img[i] = mt.position(sub[i]);
       if (!std::isfinite(img[i].x) || !std::isfinite(img[i].y) || !std::isfinite(img[i].z))
         throw Error("the map is NaN or Inf inside solid tetrahedron " + std::to_string(mt.k));
     }
@@ -110,7 +110,7 @@ double ExactMethod3::split_reference_side(const ClippedImage3& image, const Poin
     for (int i = 0; i < 4; ++i) {
       const Point3 r = child[i];
       cxi[i] = xi[0] + (r.x * (xi[1] - xi[0]) + r.y * (xi[2] - xi[0]) + r.z * (xi[3] - xi[0]));
-      cy[i] = mt.at(cxi[i]).x;
+      cy[i] = mt.position(cxi[i]);
     }
     if (orient3d(cy[0], cy[1], cy[2], cy[3]) <= 0) {
       if (depth >= kMaxPartDepth3 || parts + 8 > kMaxParts3) {

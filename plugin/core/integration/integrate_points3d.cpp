@@ -43,7 +43,7 @@ void PointIntegrator3::add_across(const MappedTet& mt, LocalBlock& block) {
       eta_.push_back(a.point.eta);
       xi_.push_back(a.point.xi);
       weight_.push_back(a.point.weight);
-      jac_.push_back(a.point.jac);
+      if (gradients_) jac_.push_back(a.point.jac);
     }
     across_.resize(kept);
     block.enter_fluid_element(fluid_->dofs(kf));
@@ -132,16 +132,26 @@ inline void PointIntegrator3::reference_value(const ClippedImage3& image, Point3
   }
 }
 
+inline Point3 PointIntegrator3::reference_position(const ClippedImage3& image, Point3 xi) const {
+  const MappedTet& mt = image.tetrahedron;
+  if (image.origin != Point3()) return mt.displacement_position(xi) + (mt.origin() - image.origin);
+  return mt.position(xi);
+}
+
 inline void PointIntegrator3::add_reference_point(const ClippedImage3& image, int kf, Point3 xi, Point3 x,
                                                   const Point3 (&d)[3], double weight) {
   MapValue3 mv;
-  mv.x = x;
   image.tetrahedron.set_jacobian(d, mv);
   if (!(det3(mv.jac) > 0)) throw Error("the map folds solid tetrahedron " + std::to_string(image.tetrahedron.k));
   std::array<double, 9>& jac = jac_.emplace_back();
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b) jac[3 * a + b] = mv.jac[a][b];
-  eta_.push_back(integrand_.fluid.to_reference(kf, mv.x, image.origin));
+  add_reference_point(image, kf, xi, x, weight);
+}
+
+inline void PointIntegrator3::add_reference_point(const ClippedImage3& image, int kf, Point3 xi, Point3 x,
+                                                  double weight) {
+  eta_.push_back(integrand_.fluid.to_reference(kf, x, image.origin));
   xi_.push_back(xi);
   weight_.push_back(weight);
 }
@@ -162,6 +172,10 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
     const double measure = std::fabs(volume6(xt[0], xt[1], xt[2], xt[3])) / 6 * solid_det;
     for (const RulePoint3& rp : rule) {
       const Point3 xi = from_reference(xt, rp.xi);
+      if (!gradients_) {
+        add_reference_point(image, kf, xi, reference_position(image, xi), measure * rp.weight);
+        continue;
+      }
       Point3 x, d[3];
       reference_value(image, xi, x, d);
       add_reference_point(image, kf, xi, x, d, measure * rp.weight);
@@ -312,9 +326,7 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
             c2 = 0.5 * dot(n, dhd);
           } else {
             const double l1 = -c0 / c1;
-            Point3 x1, D1[3];
-            reference_value(image, xi + l1 * d, x1, D1);
-            c2 = dot(n, x1 - y) / (l1 * l1);
+            c2 = dot(n, reference_position(image, xi + l1 * d) - y) / (l1 * l1);
           }
         }
         const double disc = c1 * c1 - 4 * c0 * c2;
@@ -325,19 +337,25 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
         for (size_t k = 0; k < along.nodes.size(); ++k) {
           const double t = along.nodes[k] * l;
           const Point3 at = xi + t * d;
-          Point3 xt, Dt[3];
-          if (quadratic) {
-            xt = x0 + t * dd + (0.5 * t * t) * dhd;
-            for (int c = 0; c < 3; ++c) Dt[c] = D[c] + t * hd[c];
+          Point3 xt;
+          if (!gradients_) {  // X alone: mass terms on the reference side do not read dX/ds
+            xt = quadratic ? x0 + t * dd + (0.5 * t * t) * dhd : reference_position(image, at);
+            add_reference_point(image, kf, at, xt, along.weights[k] * column);
           } else {
-            reference_value(image, at, xt, Dt);
+            Point3 Dt[3];
+            if (quadratic) {
+              xt = x0 + t * dd + (0.5 * t * t) * dhd;
+              for (int c = 0; c < 3; ++c) Dt[c] = D[c] + t * hd[c];
+            } else {
+              reference_value(image, at, xt, Dt);
+            }
+            add_reference_point(image, kf, at, xt, Dt, along.weights[k] * column);
           }
-          add_reference_point(image, kf, at, xt, Dt, along.weights[k] * column);
           if (across >= 0) {
             AcrossPoint& p = across_.emplace_back();
             p.kf = across;
             p.point = {integrand_.fluid.to_reference(across, xt, image.origin), at, -along.weights[k] * column,
-                       jac_.back()};
+                       gradients_ ? jac_.back() : std::array<double, 9>{}};
           }
         }
       }

@@ -58,9 +58,14 @@ class PointIntegrator3 : public PieceIntegrator3 {
   int fluid_plane(const ClippedImage3& image, const Point3 (&corner)[4], unsigned common, bool& on_boundary) const;
   // On the reference side: X at xi (relative to image.origin when it is not 0) and d[i] = dX/dxi_i.
   void reference_value(const ClippedImage3& image, Point3 xi, Point3& x, Point3 (&d)[3]) const;
+  // X alone at xi, the same value as reference_value's.
+  Point3 reference_position(const ClippedImage3& image, Point3 xi) const;
   // Adds reference point xi where X is x and dX/dxi is d, with its weight; throws where the map folds.
   void add_reference_point(const ClippedImage3& image, int kf, Point3 xi, Point3 x, const Point3 (&d)[3],
                            double weight);
+  // The same without dX/ds (no gradient terms: jac_ is not read; folds are certified on the whole solid
+  // tetrahedron before, MappedTet::prepare).
+  void add_reference_point(const ClippedImage3& image, int kf, Point3 xi, Point3 x, double weight);
   // Folds the weights and the chain rule's jacobian into the fluid functions read (with constant multiplier
   // gradients, into their gradients' sums instead).
   void weigh(const MappedTet& mt, int n, const std::vector<char>& read);
@@ -81,7 +86,8 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // sums each fluid function's weighted chain-rule gradients along the points (gradient_sums_: x, y, z).
   bool constant_multiplier_gradients_;
   std::vector<double> gradient_sums_;
-  // The gathered points, as PointData's fields (jac_ only where the map is not affine).
+  // The gathered points, as PointData's fields (jac_ only where the map is not affine; on the reference side
+  // only with gradient terms).
   std::vector<Point3> eta_, xi_;
   std::vector<double> weight_;
   std::vector<std::array<double, 9>> jac_;

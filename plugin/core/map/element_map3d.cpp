@@ -1,5 +1,6 @@
 #include "map/element_map3d.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -63,6 +64,30 @@ void TetrahedronMap::polynomial(Point3 xi, Point3& x, Point3 d[3], int first) co
     sum_quadratic(c_, xi, x, d, first);
   else
     sum_polynomial(c_, degree_, nm, xi, x, d, first);
+}
+
+Point3 TetrahedronMap::polynomial_value(Point3 xi, int first) const {
+  double v[monomial_count3(kMaxDegree)];
+  if (degree_ == 2) {  // sum_quadratic's monomials
+    const double q[10] = {1, xi.x, xi.y, xi.z, xi.x * xi.x, xi.x * xi.y, xi.y * xi.y, xi.x * xi.z, xi.y * xi.z,
+                          xi.z * xi.z};
+    std::copy(q, q + 10, v);
+  } else {
+    monomial_values3(degree_, xi, v);
+  }
+  const int nm = monomial_count3(degree_);
+  double s[3];
+  for (int a = 0; a < 3; ++a) {
+    double sum = 0;
+    for (int m = first; m < nm; ++m) sum += c_[a][m] * v[m];
+    s[a] = sum;
+  }
+  return {s[0], s[1], s[2]};
+}
+
+Point3 TetrahedronMap::position(Point3 xi) const {
+  if (degree_ >= 1) return polynomial_value(xi, 0);
+  return map_->evaluate(k, xi).x;
 }
 
 bool TetrahedronMap::reference_hessian(double h[3][3][3]) const {

@@ -37,6 +37,8 @@ class TetrahedronMap {
   // X and its reference-coordinate derivatives d[i] = dX/dxi_i at xi (of the fitted polynomial, or of the
   // map itself when its degree is unknown).
   void reference_derivatives(Point3 xi, Point3& x, Point3 d[3]) const;
+  // X at xi alone (the same value as reference_derivatives' x, bit for bit).
+  Point3 position(Point3 xi) const;
 
   // "solid tetrahedron k", for error messages.
   std::string name() const { return "solid tetrahedron " + std::to_string(k); }
@@ -45,6 +47,8 @@ class TetrahedronMap {
   // X(xi) - origin() (the constant term left out: to the relative precision of the tetrahedron's image
   // wherever it lies) and d[i] = dX/dxi_i, of the fitted polynomial (fitted_degree() >= 1).
   void displacement(Point3 xi, Point3& x, Point3 d[3]) const { polynomial(xi, x, d, 1); }
+  // X(xi) - origin() alone (the same value as displacement's x, bit for bit).
+  Point3 displacement_position(Point3 xi) const { return polynomial_value(xi, 1); }
 
  protected:
   const SolidMap3* map_ = nullptr;
@@ -55,6 +59,8 @@ class TetrahedronMap {
   // value and reference-coordinate derivatives d[i] = dX/dxi_i of the fitted polynomial, its value summed
   // from monomial first on (0: X, 1: X - origin())
   void polynomial(Point3 xi, Point3& x, Point3 d[3], int first = 0) const;
+  // its value alone, summed in the same order
+  Point3 polynomial_value(Point3 xi, int first) const;
   double inv_[3][3];  // d xi / d s
 };
 
