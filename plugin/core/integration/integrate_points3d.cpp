@@ -256,6 +256,8 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
   // a quadratic map along a column: X(xi + l d) = X + l D d + l^2 (d^T H d) / 2, D(xi + l d) = D + l H d
   double hessian[3][3][3];
   const bool quadratic = mt.reference_hessian(hessian);
+  Point3 x_corner, D_corner[3];  // dX/dxi at xi = 0 (quadratic maps: dX/dxi(xi) = D_corner + H xi)
+  if (quadratic) reference_value(image, Point3(), x_corner, D_corner);
   // The face points must not depend on the side: the pieces' vertices are not numbered in any order
   // (clip_filtered), so they are ordered by a linear function of their position in a direction that no mesh
   // is aligned with (a tie, two vertices at the same value, is then an accident of measure zero).
@@ -289,13 +291,14 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
     const Point3 d = (g[a] > 0 ? 1.0 : -1.0) * axis[a];  // outward: n . A grows along d
     const double rise = std::fabs(g[a]);                 // d(n . A) along d
     const double height = rise / grad;                   // d . nu: a column's height per unit of l
-    Point3 hd[3], dhd;  // (H d)_i = d(dX/dxi_i) along d; d^T H d (quadratic maps)
+    Point3 hd[3], dhd, dd_corner;  // (H d)_i = d(dX/dxi_i) along d; d^T H d; dX/dl at xi = 0 (quadratic maps)
     if (quadratic) {
       for (int i = 0; i < 3; ++i)
         hd[i] = {hessian[0][i][0] * d.x + hessian[0][i][1] * d.y + hessian[0][i][2] * d.z,
                  hessian[1][i][0] * d.x + hessian[1][i][1] * d.y + hessian[1][i][2] * d.z,
                  hessian[2][i][0] * d.x + hessian[2][i][1] * d.y + hessian[2][i][2] * d.z};
       dhd = d.x * hd[0] + d.y * hd[1] + d.z * hd[2];
+      dd_corner = d.x * D_corner[0] + d.y * D_corner[1] + d.z * D_corner[2];
     }
     // the fan from the face's least vertex in order(), each triangle's other corners in that order
     int first = s;
@@ -310,9 +313,14 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
       for (const RulePoint& rp : face_rule) {
         const Point3 xi = q0 + (rp.xi.x * q1 + rp.xi.y * q2);
         const Point3 y = p0 + (rp.xi.x * p1 + rp.xi.y * p2);
-        Point3 x0, D[3];
-        reference_value(image, xi, x0, D);
-        const Point3 dd = d.x * D[0] + d.y * D[1] + d.z * D[2];  // dX/dl along the column
+        Point3 x0, D[3], dd;  // X, dX/dxi and dX/dl along the column
+        if (quadratic && !gradients_) {  // X alone (dX/dxi is not read): dX/dl is affine in xi, of slope H d
+          x0 = reference_position(image, xi);
+          dd = dd_corner + (xi.x * hd[0] + xi.y * hd[1] + xi.z * hd[2]);
+        } else {
+          reference_value(image, xi, x0, D);
+          dd = d.x * D[0] + d.y * D[1] + d.z * D[2];
+        }
         // q(l) = c0 + c1 l + c2 l^2 along the column: c0 and c1 = n . dX/dl at xi; c2 = n . d^T H d / 2 for a
         // quadratic map, else from q at the first-order step l1 = -c0 / c1 (where c0 + c1 l1 = 0); where the
         // map's slope is far off the straight image's, that slope alone

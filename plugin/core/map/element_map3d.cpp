@@ -1,6 +1,5 @@
 #include "map/element_map3d.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -67,16 +66,21 @@ void TetrahedronMap::polynomial(Point3 xi, Point3& x, Point3 d[3], int first) co
 }
 
 Point3 TetrahedronMap::polynomial_value(Point3 xi, int first) const {
-  double v[monomial_count3(kMaxDegree)];
-  if (degree_ == 2) {  // sum_quadratic's monomials
-    const double q[10] = {1, xi.x, xi.y, xi.z, xi.x * xi.x, xi.x * xi.y, xi.y * xi.y, xi.x * xi.z, xi.y * xi.z,
-                          xi.z * xi.z};
-    std::copy(q, q + 10, v);
-  } else {
-    monomial_values3(degree_, xi, v);
-  }
-  const int nm = monomial_count3(degree_);
   double s[3];
+  if (degree_ == 2) {  // sum_quadratic's monomials and sums, in its order (0 + c0 * 1 is c0)
+    const double v[10] = {1, xi.x, xi.y, xi.z, xi.x * xi.x, xi.x * xi.y, xi.y * xi.y, xi.x * xi.z, xi.y * xi.z,
+                          xi.z * xi.z};
+    for (int a = 0; a < 3; ++a) {
+      const double* ca = c_[a];
+      double sum = first == 0 ? ca[0] : 0.0;
+      for (int m = 1; m < 10; ++m) sum += ca[m] * v[m];
+      s[a] = sum;
+    }
+    return {s[0], s[1], s[2]};
+  }
+  double v[monomial_count3(kMaxDegree)];
+  monomial_values3(degree_, xi, v);
+  const int nm = monomial_count3(degree_);
   for (int a = 0; a < 3; ++a) {
     double sum = 0;
     for (int m = first; m < nm; ++m) sum += c_[a][m] * v[m];
