@@ -19,6 +19,7 @@ PointIntegrator3::PointIntegrator3(const Integrand3& integrand, CouplingReport& 
       gradients_(integrand.c1 != 0), listing_(integrand.c1 != 0 && !integrand.chain),
       constant_multiplier_gradients_(gradients_ && !listing_ && integrand.multiplier.fitted() &&
                                      integrand.multiplier.degree() <= 1),
+      constant_fluid_gradients_(integrand.fluid.fitted() && integrand.fluid.degree() <= 1),
       fluid_(fluid), values_(integrand) {}
 
 double PointIntegrator3::integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) {
@@ -75,6 +76,8 @@ void PointIntegrator3::add_gathered(const MappedTet& mt, int kf, LocalBlock& blo
   counts_.points += n;
   if (deferred_chain(mt)) {
     values_.evaluate_fluid_gradient_sums(kf, eta_.data(), weight_.data(), mt.k, xi_.data(), n);
+  } else if (constant_chain(mt)) {
+    values_.evaluate_constant_gradients(kf, eta_.data(), mt.k, xi_.data(), n);
   } else {
     values_.evaluate(kf, eta_.data(), mt.k, xi_.data(), n);
   }
@@ -142,7 +145,6 @@ inline void PointIntegrator3::add_reference_point(const ClippedImage3& image, in
                                                   const Point3 (&d)[3], double weight) {
   MapValue3 mv;
   image.tetrahedron.set_jacobian(d, mv);
-  if (!(det3(mv.jac) > 0)) throw Error("the map folds solid tetrahedron " + std::to_string(image.tetrahedron.k));
   std::array<double, 9>& jac = jac_.emplace_back();
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b) jac[3 * a + b] = mv.jac[a][b];
@@ -373,8 +375,14 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
 
 void PointIntegrator3::weigh(const MappedTet& mt, int n, const std::vector<char>& read) {
   const double(&aj)[3][3] = mt.affine_value.jac;
-  const bool deferred = deferred_chain(mt), gradients = gradients_ && !listing_;
+  const bool deferred = deferred_chain(mt), constant = constant_chain(mt), gradients = gradients_ && !listing_;
   if (constant_multiplier_gradients_) gradient_sums_.resize(3 * static_cast<size_t>(fluid_functions_));
+  double jw[9] = {};  // constant chain: c1 sum_q w_q J_q
+  if (constant) {
+    for (int q = 0; q < n; ++q)
+      for (int i = 0; i < 9; ++i) jw[i] += weight_[q] * jac_[q][i];
+    for (double& v : jw) v *= integrand_.c1;
+  }
   for (int f = 0; f < fluid_functions_; ++f) {
     if (!read[f]) continue;
     double* v = values_.fluid_value(f);
@@ -385,6 +393,11 @@ void PointIntegrator3::weigh(const MappedTet& mt, int n, const std::vector<char>
       // c1 J^T sum_q w_q grad phi(q), J = dX/ds constant, from the evaluation's weighted sums
       const double* d = values_.fluid_gradient_sum(f);
       for (int b = 0; b < 3; ++b) sums[b] = integrand_.c1 * (d[0] * aj[0][b] + d[1] * aj[1][b] + d[2] * aj[2][b]);
+      continue;
+    }
+    if (constant) {  // (c1 sum_q w_q J_q)^T grad phi, grad phi constant
+      const double* d = values_.fluid_constant_gradient(f);
+      for (int b = 0; b < 3; ++b) sums[b] = d[0] * jw[b] + d[1] * jw[3 + b] + d[2] * jw[6 + b];
       continue;
     }
     double* const gradient = values_.fluid_gradient(f);
@@ -409,7 +422,7 @@ void PointIntegrator3::add_pairs(const MappedTet& mt, int n, bool twins, LocalBl
   // The chain rule's gradient term: grad psi . g summed along the points (g: the weighted chain-rule
   // gradients weigh formed); with grad psi constant on the tetrahedron (a multiplier fitted at degree 0 or
   // 1), grad psi . (sum_q g_q), the sums weigh formed.
-  const bool deferred = deferred_chain(mt);
+  const bool deferred = deferred_chain(mt) || constant_chain(mt);  // the multiplier's gradients at one point
   auto gradient_term = [&](int f, const double* gphi, const double* gpsi) {
     if (!constant_multiplier_gradients_) {
       double sum = 0;

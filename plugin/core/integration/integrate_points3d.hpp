@@ -60,11 +60,12 @@ class PointIntegrator3 : public PieceIntegrator3 {
   void reference_value(const ClippedImage3& image, Point3 xi, Point3& x, Point3 (&d)[3]) const;
   // X alone at xi, the same value as reference_value's.
   Point3 reference_position(const ClippedImage3& image, Point3 xi) const;
-  // Adds reference point xi where X is x and dX/dxi is d, with its weight; throws where the map folds.
+  // Adds reference point xi where X is x and dX/dxi is d, with its weight. No sign is checked here: det dX/dxi > 0
+  // is certified on the whole solid tetrahedron before (MappedTet::prepare), and a band's column may end just
+  // outside it, where only the polynomial's values count.
   void add_reference_point(const ClippedImage3& image, int kf, Point3 xi, Point3 x, const Point3 (&d)[3],
                            double weight);
-  // The same without dX/ds (no gradient terms: jac_ is not read; folds are certified on the whole solid
-  // tetrahedron before, MappedTet::prepare).
+  // The same without dX/ds (no gradient terms: jac_ is not read).
   void add_reference_point(const ClippedImage3& image, int kf, Point3 xi, Point3 x, double weight);
   // Folds the weights and the chain rule's jacobian into the fluid functions read (with constant multiplier
   // gradients, into their gradients' sums instead).
@@ -76,6 +77,12 @@ class PointIntegrator3 : public PieceIntegrator3 {
   bool deferred_chain(const MappedTet& mt) const {
     return constant_multiplier_gradients_ && mt.affine && integrand_.fluid.fitted();
   }
+  // Constant multiplier gradients, a map that is not affine and a fluid basis fitted at degree 0 or 1: both
+  // gradients are constant, so sum_q w_q grad psi . (J_q^T grad phi) = grad psi . (sum_q w_q J_q)^T grad phi:
+  // weigh sums the weighted jacobians once for all fluid functions (PointValues3::evaluate_constant_gradients).
+  bool constant_chain(const MappedTet& mt) const {
+    return constant_multiplier_gradients_ && !mt.affine && constant_fluid_gradients_;
+  }
   void add_listing(const MappedTet& mt, int n, LocalBlock& block);
 
   const Integrand3& integrand_;
@@ -85,6 +92,7 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // The chain rule with a multiplier fitted at degree 0 or 1 (gradients constant on a tetrahedron): weigh
   // sums each fluid function's weighted chain-rule gradients along the points (gradient_sums_: x, y, z).
   bool constant_multiplier_gradients_;
+  bool constant_fluid_gradients_;  // a fluid basis fitted at degree 0 or 1
   std::vector<double> gradient_sums_;
   // The gathered points, as PointData's fields (jac_ only where the map is not affine; on the reference side
   // only with gradient terms).

@@ -1,5 +1,7 @@
 #include "integration/point_values3d.hpp"
 
+#include <algorithm>
+
 namespace dlmfsi {
 
 namespace {
@@ -42,6 +44,22 @@ void PointValues3::evaluate_fluid_gradient_sums(int kf, const Point3* eta, const
   grow(scratch_, multiplier_functions);
   integrand_.fluid.evaluate_gradient_sums(kf, eta, weight, n, fluid_value_.data(), fluid_gradient_sum_.data());
   // the multiplier's values at the points, its (constant) gradients at the first
+  integrand_.multiplier.evaluate_points(ks, xi, n, multiplier_value_.data(), nullptr);
+  integrand_.multiplier.evaluate_points(ks, xi, 1, scratch_.data(), multiplier_gradient_.data());
+}
+
+void PointValues3::evaluate_constant_gradients(int kf, const Point3* eta, int ks, const Point3* xi, int n) {
+  n_ = n;
+  const size_t nn = static_cast<size_t>(n);
+  const size_t fluid_functions = integrand_.fluid.functions().size();
+  const size_t multiplier_functions = integrand_.multiplier.functions().size();
+  grow(fluid_value_, nn * fluid_functions);
+  grow(fluid_gradient_, 3 * fluid_functions);
+  grow(multiplier_value_, nn * multiplier_functions);
+  grow(multiplier_gradient_, 3 * multiplier_functions);
+  grow(scratch_, std::max(fluid_functions, multiplier_functions));
+  integrand_.fluid.evaluate_points(kf, eta, n, fluid_value_.data(), nullptr);
+  integrand_.fluid.evaluate_points(kf, eta, 1, scratch_.data(), fluid_gradient_.data());
   integrand_.multiplier.evaluate_points(ks, xi, n, multiplier_value_.data(), nullptr);
   integrand_.multiplier.evaluate_points(ks, xi, 1, scratch_.data(), multiplier_gradient_.data());
 }

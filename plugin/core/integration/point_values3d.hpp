@@ -19,7 +19,13 @@ class PointValues3 {
   // are then evaluated at the first point only (multiplier_constant_gradient).
   void evaluate_fluid_gradient_sums(int kf, const Point3* eta, const double* weight, int ks, const Point3* xi, int n);
 
+  // The values at the n points and both sides' gradients at the first point only (both bases fitted at degree 0
+  // or 1, their gradients constant on an element): fluid_constant_gradient, multiplier_constant_gradient.
+  void evaluate_constant_gradients(int kf, const Point3* eta, int ks, const Point3* xi, int n);
+
   double* fluid_value(int f) { return &fluid_value_[static_cast<size_t>(f) * n_]; }
+  // After evaluate_constant_gradients: the fluid function's gradient (x, y, z), the same at every point.
+  const double* fluid_constant_gradient(int f) const { return &fluid_gradient_[3 * static_cast<size_t>(f)]; }
   double* fluid_gradient(int f) { return &fluid_gradient_[3 * static_cast<size_t>(f) * n_]; }
   const double* fluid_gradient_sum(int f) const { return &fluid_gradient_sum_[3 * static_cast<size_t>(f)]; }
   const double* multiplier_value(int g) const { return &multiplier_value_[static_cast<size_t>(g) * n_]; }
