@@ -44,8 +44,8 @@ void sum_quadratic(const double (*c)[monomial_count3(TetrahedronMap::kMaxDegree)
   double s[3], g[3][3];
   for (int a = 0; a < 3; ++a) {
     const double* ca = c[a];
-    double sum = 0;
-    for (int m = first; m < 10; ++m) sum += ca[m] * v[m];
+    double sum = first == 0 ? ca[0] : 0.0;  // 0 + c0 * 1: a fixed loop after it, unrolled
+    for (int m = 1; m < 10; ++m) sum += ca[m] * v[m];
     s[a] = sum;
     g[0][a] = ca[1] + ca[4] * x2 + ca[5] * xi.y + ca[7] * xi.z;  // d/dxi1: xi1, xi1^2, xi1 xi2, xi1 xi3
     g[1][a] = ca[2] + ca[5] * xi.x + ca[6] * y2 + ca[8] * xi.z;  // d/dxi2: xi2, xi1 xi2, xi2^2, xi2 xi3
@@ -67,7 +67,7 @@ void TetrahedronMap::polynomial(Point3 xi, Point3& x, Point3 d[3], int first) co
 
 Point3 TetrahedronMap::polynomial_value(Point3 xi, int first) const {
   double s[3];
-  if (degree_ == 2) {  // sum_quadratic's monomials and sums, in its order (0 + c0 * 1 is c0)
+  if (degree_ == 2) {  // sum_quadratic's monomials and sums, in its order
     const double v[10] = {1, xi.x, xi.y, xi.z, xi.x * xi.x, xi.x * xi.y, xi.y * xi.y, xi.x * xi.z, xi.y * xi.z,
                           xi.z * xi.z};
     for (int a = 0; a < 3; ++a) {
