@@ -46,7 +46,7 @@ struct Triangles {
   static const Piece* rest_piece(const Rest& r) { return &r.piece; }
   static unsigned rest_corners(const Rest& r) { return r.corners; }
   // The edge opposite vertex i is clip's edge i + 1.
-  static bool reaches_beyond(unsigned beyond, int i) { return beyond & (1u << ((i + 1) % 3)); }
+  static bool reaches_beyond(const Piece&, unsigned beyond, int i) { return beyond & (1u << ((i + 1) % 3)); }
 };
 
 // A uniform bucket grid over the fluid triangles' bounding boxes.

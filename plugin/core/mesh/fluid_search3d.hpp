@@ -74,7 +74,16 @@ struct Tetrahedra {
   static int rest_facet(const Rest&) { return -1; }
   static const Piece3* rest_piece(const Rest&) { return nullptr; }
   static unsigned rest_corners(const Rest&) { return 0; }
-  static bool reaches_beyond(unsigned beyond, int i) { return beyond & (1u << i); }
+  // t reaches beyond face i's plane and the piece has a face on it: three or more of its vertices lie on that
+  // plane (the vertices of a convex polytope on one of its supporting planes are one of its faces', and no three
+  // of them are collinear). Where t reaches beyond the plane but the piece only touches it, or misses it, the
+  // neighbour's piece is empty or met across another face (t's interior less the fluid edges is connected).
+  static bool reaches_beyond(const Piece3& piece, unsigned beyond, int i) {
+    if (!(beyond & (1u << i))) return false;
+    int on = 0;
+    for (int v = 0; v < piece.n; ++v) on += piece.planes[v] >> (4 + i) & 1;
+    return on >= 3;
+  }
 };
 
 // A uniform bucket grid over the fluid tetrahedra's bounding boxes.

@@ -15,7 +15,9 @@ namespace dlmfsi {
 // side(mesh, k, i, p) (the exact sign of p with respect to facet i of element k, opposite vertex i: +1 on
 // the element's side), max_walk_steps(n), kClipHintFirst (does for_each_piece clip t against the hint
 // before it locates t's centroid?), Faces (what clip prepares once from t), clip(t, faces, k, beyond)
-// and reaches_beyond(beyond, i) (t reaches beyond facet i of k), and Rest with clip(t, faces, k, beyond,
+// and reaches_beyond(piece, beyond, i) (t reaches beyond facet i of k there: its neighbour across may meet
+// t; the walk visits every element whose piece has positive measure whenever it holds for each pair of pieces
+// adjacent across a facet, with t crossing the facet's interior), and Rest with clip(t, faces, k, beyond,
 // rest), rest_facet(rest), rest_piece(rest), rest_corners(rest): what clip tells of the part of t beyond one
 // facet of k when t ∩ k is t's part on the inner side of that facet's line or plane (facet -1 otherwise).
 // Elements::ElementPlanes, when Elements keeps something of each fluid element for clip (kept: then
@@ -227,23 +229,22 @@ bool FluidSearchOf<Elements>::walk(const PointT t_absolute[kCorners], PointT ori
       queue_.push_back(start);
       mark(start);
       bool at_boundary = false;
-      for (std::size_t q = 0; q < queue_.size(); ++q) {
-        const int k = queue_[q];
-        if (q > 0) {
-          if (!corners_of(k)) return false;
-          const PieceT piece = clip(t, t_faces, k, k_corners, beyond);
-          if (piece.n == 0) continue;
-          visit(k, piece);
-        } else {
-          visit(k, first);
-        }
-        // Across facet i only where t reaches beyond it.
+      // visits k's piece, then queues the neighbours across the facets where t reaches beyond it
+      auto spread = [&](int k, const PieceT& piece) {
+        visit(k, piece);
         for (int i = 0; i < kCorners; ++i) {
-          if (!Elements::reaches_beyond(beyond, i)) continue;
+          if (!Elements::reaches_beyond(piece, beyond, i)) continue;
           const int nb = fluid_.neighbours[k][i];
           if (nb < 0) at_boundary = true;
           else if (mark(nb)) queue_.push_back(nb);
         }
+      };
+      spread(start, first);
+      for (std::size_t q = 1; q < queue_.size(); ++q) {
+        const int k = queue_[q];
+        if (!corners_of(k)) return false;
+        const PieceT piece = clip(t, t_faces, k, k_corners, beyond);
+        if (piece.n > 0) spread(k, piece);
       }
       // The walk reached every piece unless t leaves the fluid mesh across a boundary facet of a visited
       // element: on a non-convex mesh (a notch, a hole) t may come back in elsewhere, and the part of t
