@@ -321,9 +321,60 @@ TEST(Fold3d, BernsteinCertificateAgainstDenseSampling) {
   }
 }
 
+namespace {
+
+// Fits formula (a polynomial of the given degree) on the tetrahedron of the given corners and calls
+// check(tm, xi, x, j, x0) at 50 random reference points xi, with the formula's X (x) and dX/ds (j) there and
+// its X at corner 0 (x0).
+void at_random_points(const Formula& formula, int degree, const std::vector<Point3>& vertices, unsigned seed,
+                      const std::function<void(const TetrahedronMap&, Point3, Point3, const double (&)[3][3],
+                                               Point3)>& check) {
+  Mesh3 solid;
+  solid.vertices = vertices;
+  solid.tetrahedra = {{0, 1, 2, 3}};
+  solid.build_adjacency();
+  const FormulaMap3 map(solid, formula, degree);
+  TetrahedronMap tm;
+  tm.fit(solid, map, 0);
+  ASSERT_EQ(tm.fitted_degree(), degree);
+  Point3 corner[4];
+  solid.corners(0, corner);
+  Point3 x0;
+  double j[3][3];
+  formula(corner[0], x0, j);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int n = 0; n < 50; ++n) {
+    Point3 xi{u(rng), u(rng), u(rng)};
+    if (xi.x + xi.y + xi.z > 1) xi = {xi.x / 3, xi.y / 3, xi.z / 3};
+    Point3 x;
+    formula(from_reference(corner, xi), x, j);
+    check(tm, xi, x, j, x0);
+  }
+}
+
+// X alone and the displacement alone (TetrahedronMap::position, displacement_position) at xi: the formula's
+// values x and x - x0, and bit for bit those of the sums that form the derivatives too.
+void expect_positions(const TetrahedronMap& tm, Point3 xi, Point3 x, Point3 x0) {
+  const Point3 p = tm.position(xi), dp = tm.displacement_position(xi);
+  EXPECT_NEAR(p.x, x.x, 1e-13);
+  EXPECT_NEAR(p.y, x.y, 1e-13);
+  EXPECT_NEAR(p.z, x.z, 1e-13);
+  EXPECT_NEAR(dp.x, x.x - x0.x, 1e-13);
+  EXPECT_NEAR(dp.y, x.y - x0.y, 1e-13);
+  EXPECT_NEAR(dp.z, x.z - x0.z, 1e-13);
+  Point3 v, dv[3], d, dd[3];
+  tm.reference_derivatives(xi, v, dv);
+  tm.displacement(xi, d, dd);
+  EXPECT_TRUE(p.x == v.x && p.y == v.y && p.z == v.z);
+  EXPECT_TRUE(dp.x == d.x && dp.y == d.y && dp.z == d.z);
+}
+
+}  // namespace
+
 // TetrahedronMap's quadratic evaluation (written out for P23d maps) against a quadratic with all ten monomials
 // in each component, on a tetrahedron away from the origin: X, dX/ds and the displacement X - X(corner 0) at
-// random reference points, against the formula evaluated directly.
+// random reference points, and X and the displacement alone, against the formula evaluated directly.
 TEST(TetrahedronMap, AFullQuadraticAndItsJacobianMatchTheFormula) {
   const double q[3][10] = {{0.3, 1.1, -0.2, 0.4, 0.05, -0.07, 0.11, 0.02, -0.09, 0.06},
                            {-0.1, 0.2, 0.9, -0.3, -0.04, 0.08, 0.03, -0.12, 0.05, 0.07},
@@ -341,50 +392,24 @@ TEST(TetrahedronMap, AFullQuadraticAndItsJacobianMatchTheFormula) {
     }
     x = {v[0], v[1], v[2]};
   };
-  Mesh3 solid;
-  solid.vertices = {{2.0, 1.0, 3.0}, {2.4, 1.1, 3.0}, {2.1, 1.5, 3.1}, {2.0, 1.2, 3.45}};
-  solid.tetrahedra = {{0, 1, 2, 3}};
-  solid.build_adjacency();
-  const FormulaMap3 map(solid, quadratic, 2);
-  TetrahedronMap tm;
-  tm.fit(solid, map, 0);
-  ASSERT_EQ(tm.fitted_degree(), 2);
-  Point3 corner[4];
-  solid.corners(0, corner);
-  Point3 x0;
-  double j0[3][3];
-  quadratic(corner[0], x0, j0);
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> u(0, 1);
-  for (int n = 0; n < 50; ++n) {
-    Point3 xi{u(rng), u(rng), u(rng)};
-    if (xi.x + xi.y + xi.z > 1) xi = {xi.x / 3, xi.y / 3, xi.z / 3};
-    Point3 x;
-    double j[3][3];
-    quadratic(from_reference(corner, xi), x, j);
-    const MapValue3 v = tm.at(xi);
-    EXPECT_NEAR(v.x.x, x.x, 1e-13);
-    EXPECT_NEAR(v.x.y, x.y, 1e-13);
-    EXPECT_NEAR(v.x.z, x.z, 1e-13);
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) EXPECT_NEAR(v.jac[a][b], j[a][b], 1e-12) << a << b;
-    Point3 d, dxi[3];
-    tm.displacement(xi, d, dxi);
-    EXPECT_NEAR(d.x, x.x - x0.x, 1e-13);
-    EXPECT_NEAR(d.y, x.y - x0.y, 1e-13);
-    EXPECT_NEAR(d.z, x.z - x0.z, 1e-13);
-    // X alone, and the displacement alone: the formula's, and bit for bit what the derivatives' sums give
-    const Point3 p = tm.position(xi), dp = tm.displacement_position(xi);
-    EXPECT_NEAR(p.x, x.x, 1e-13);
-    EXPECT_NEAR(p.y, x.y, 1e-13);
-    EXPECT_NEAR(p.z, x.z, 1e-13);
-    EXPECT_TRUE(p.x == v.x.x && p.y == v.x.y && p.z == v.x.z);
-    EXPECT_TRUE(dp.x == d.x && dp.y == d.y && dp.z == d.z);
-  }
+  at_random_points(quadratic, 2, {{2.0, 1.0, 3.0}, {2.4, 1.1, 3.0}, {2.1, 1.5, 3.1}, {2.0, 1.2, 3.45}}, 7,
+                   [](const TetrahedronMap& tm, Point3 xi, Point3 x, const double (&j)[3][3], Point3 x0) {
+                     const MapValue3 v = tm.at(xi);
+                     EXPECT_NEAR(v.x.x, x.x, 1e-13);
+                     EXPECT_NEAR(v.x.y, x.y, 1e-13);
+                     EXPECT_NEAR(v.x.z, x.z, 1e-13);
+                     for (int a = 0; a < 3; ++a)
+                       for (int b = 0; b < 3; ++b) EXPECT_NEAR(v.jac[a][b], j[a][b], 1e-12) << a << b;
+                     Point3 d, dxi[3];
+                     tm.displacement(xi, d, dxi);
+                     EXPECT_NEAR(d.x, x.x - x0.x, 1e-13);
+                     EXPECT_NEAR(d.y, x.y - x0.y, 1e-13);
+                     EXPECT_NEAR(d.z, x.z - x0.z, 1e-13);
+                     expect_positions(tm, xi, x, x0);
+                   });
 }
 
-// The same for a cubic map (the general sums): X alone and the displacement alone against the formula, and bit
-// for bit against the value the derivatives' sums give.
+// X and the displacement alone for a cubic map (the general sums), against the formula.
 TEST(TetrahedronMap, PositionOfACubicMatchesTheFormula) {
   const Formula cubic = [](Point3 s, Point3& x, double j[3][3]) {
     x = {s.x + 0.1 * s.x * s.x * s.x, s.y + 0.2 * s.y * s.y * s.z, s.z - 0.15 * s.x * s.y * s.z + 0.05 * s.z * s.z};
@@ -394,38 +419,8 @@ TEST(TetrahedronMap, PositionOfACubicMatchesTheFormula) {
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) j[a][b] = jj[a][b];
   };
-  Mesh3 solid;
-  solid.vertices = {{0.5, -0.3, 0.2}, {1.1, -0.2, 0.25}, {0.6, 0.4, 0.1}, {0.55, -0.1, 0.9}};
-  solid.tetrahedra = {{0, 1, 2, 3}};
-  solid.build_adjacency();
-  const FormulaMap3 map(solid, cubic, 3);
-  TetrahedronMap tm;
-  tm.fit(solid, map, 0);
-  ASSERT_EQ(tm.fitted_degree(), 3);
-  Point3 corner[4];
-  solid.corners(0, corner);
-  Point3 x0;
-  double j0[3][3];
-  cubic(corner[0], x0, j0);
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(0, 1);
-  for (int n = 0; n < 50; ++n) {
-    Point3 xi{u(rng), u(rng), u(rng)};
-    if (xi.x + xi.y + xi.z > 1) xi = {xi.x / 3, xi.y / 3, xi.z / 3};
-    Point3 x;
-    double j[3][3];
-    cubic(from_reference(corner, xi), x, j);
-    const Point3 p = tm.position(xi), dp = tm.displacement_position(xi);
-    EXPECT_NEAR(p.x, x.x, 1e-13);
-    EXPECT_NEAR(p.y, x.y, 1e-13);
-    EXPECT_NEAR(p.z, x.z, 1e-13);
-    EXPECT_NEAR(dp.x, x.x - x0.x, 1e-13);
-    EXPECT_NEAR(dp.y, x.y - x0.y, 1e-13);
-    EXPECT_NEAR(dp.z, x.z - x0.z, 1e-13);
-    Point3 v, dv[3], d, dd[3];
-    tm.reference_derivatives(xi, v, dv);
-    tm.displacement(xi, d, dd);
-    EXPECT_TRUE(p.x == v.x && p.y == v.y && p.z == v.z);
-    EXPECT_TRUE(dp.x == d.x && dp.y == d.y && dp.z == d.z);
-  }
+  at_random_points(cubic, 3, {{0.5, -0.3, 0.2}, {1.1, -0.2, 0.25}, {0.6, 0.4, 0.1}, {0.55, -0.1, 0.9}}, 11,
+                   [](const TetrahedronMap& tm, Point3 xi, Point3 x, const double (&)[3][3], Point3 x0) {
+                     expect_positions(tm, xi, x, x0);
+                   });
 }

@@ -17,15 +17,20 @@ void grow(std::vector<double>& v, size_t size) {
 
 PointValues3::PointValues3(const Integrand3& integrand) : integrand_(integrand), gradients_(integrand.c1 != 0) {}
 
-void PointValues3::evaluate(int kf, const Point3* eta, int ks, const Point3* xi, int n) {
+void PointValues3::start(int n, int gradient_points) {
   n_ = n;
-  const size_t nn = static_cast<size_t>(n);
+  const size_t nn = static_cast<size_t>(n), ng = static_cast<size_t>(gradient_points);
   const size_t fluid_functions = integrand_.fluid.functions().size();
   const size_t multiplier_functions = integrand_.multiplier.functions().size();
   grow(fluid_value_, nn * fluid_functions);
-  grow(fluid_gradient_, 3 * nn * fluid_functions);
+  grow(fluid_gradient_, 3 * ng * fluid_functions);
   grow(multiplier_value_, nn * multiplier_functions);
-  grow(multiplier_gradient_, 3 * nn * multiplier_functions);
+  grow(multiplier_gradient_, 3 * ng * multiplier_functions);
+  grow(scratch_, std::max(fluid_functions, multiplier_functions));
+}
+
+void PointValues3::evaluate(int kf, const Point3* eta, int ks, const Point3* xi, int n) {
+  start(n, n);
   evaluate_side(integrand_.fluid, integrand_.fluid_space, kf, eta, fluid_value_.data(), fluid_gradient_.data());
   evaluate_side(integrand_.multiplier, integrand_.multiplier_space, ks, xi, multiplier_value_.data(),
                 multiplier_gradient_.data());
@@ -33,15 +38,8 @@ void PointValues3::evaluate(int kf, const Point3* eta, int ks, const Point3* xi,
 
 void PointValues3::evaluate_fluid_gradient_sums(int kf, const Point3* eta, const double* weight, int ks,
                                                 const Point3* xi, int n) {
-  n_ = n;
-  const size_t nn = static_cast<size_t>(n);
-  const size_t fluid_functions = integrand_.fluid.functions().size();
-  const size_t multiplier_functions = integrand_.multiplier.functions().size();
-  grow(fluid_value_, nn * fluid_functions);
-  grow(fluid_gradient_sum_, 3 * fluid_functions);
-  grow(multiplier_value_, nn * multiplier_functions);
-  grow(multiplier_gradient_, 3 * multiplier_functions);
-  grow(scratch_, multiplier_functions);
+  start(n, 1);
+  grow(fluid_gradient_sum_, 3 * integrand_.fluid.functions().size());
   integrand_.fluid.evaluate_gradient_sums(kf, eta, weight, n, fluid_value_.data(), fluid_gradient_sum_.data());
   // the multiplier's values at the points, its (constant) gradients at the first
   integrand_.multiplier.evaluate_points(ks, xi, n, multiplier_value_.data(), nullptr);
@@ -49,15 +47,7 @@ void PointValues3::evaluate_fluid_gradient_sums(int kf, const Point3* eta, const
 }
 
 void PointValues3::evaluate_constant_gradients(int kf, const Point3* eta, int ks, const Point3* xi, int n) {
-  n_ = n;
-  const size_t nn = static_cast<size_t>(n);
-  const size_t fluid_functions = integrand_.fluid.functions().size();
-  const size_t multiplier_functions = integrand_.multiplier.functions().size();
-  grow(fluid_value_, nn * fluid_functions);
-  grow(fluid_gradient_, 3 * fluid_functions);
-  grow(multiplier_value_, nn * multiplier_functions);
-  grow(multiplier_gradient_, 3 * multiplier_functions);
-  grow(scratch_, std::max(fluid_functions, multiplier_functions));
+  start(n, 1);
   integrand_.fluid.evaluate_points(kf, eta, n, fluid_value_.data(), nullptr);
   integrand_.fluid.evaluate_points(kf, eta, 1, scratch_.data(), fluid_gradient_.data());
   integrand_.multiplier.evaluate_points(ks, xi, n, multiplier_value_.data(), nullptr);

@@ -36,6 +36,8 @@ class PointValues3 {
   }
 
  private:
+  // n_ = n, and room for the values at n points and the gradients at gradient_points (n or 1) on both sides.
+  void start(int n, int gradient_points);
   void evaluate_side(const PolynomialBasis3& poly, const Basis3& space, int k, const Point3* at, double* value,
                      double* gradient);
 
