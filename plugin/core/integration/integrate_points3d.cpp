@@ -44,7 +44,7 @@ void PointIntegrator3::add_across(const MappedTet& mt, LocalBlock& block) {
       eta_.push_back(a.point.eta);
       xi_.push_back(a.point.xi);
       weight_.push_back(a.point.weight);
-      if (gradients_) jac_.push_back(a.point.jac);
+      if (point_jacobians_) jac_.push_back(a.point.jac);
     }
     across_.resize(kept);
     block.enter_fluid_element(fluid_->dofs(kf));
@@ -54,6 +54,7 @@ void PointIntegrator3::add_across(const MappedTet& mt, LocalBlock& block) {
 
 void PointIntegrator3::add_points(const MappedTet& mt, int kf, const PointData* points, int n, LocalBlock& block) {
   clear_points();
+  point_jacobians_ = true;
   for (int q = 0; q < n; ++q) {
     eta_.push_back(points[q].eta);
     xi_.push_back(points[q].xi);
@@ -91,6 +92,7 @@ void PointIntegrator3::add_gathered(const MappedTet& mt, int kf, LocalBlock& blo
 
 double PointIntegrator3::gather(const ClippedImage3& image, int kf, const Piece3& piece) {
   if (image.reference_side) return gather_reference_side(image, kf, piece);
+  point_jacobians_ = true;
   const MappedTet& mt = image.tetrahedron;
   const auto& rule = tetrahedron_rule(image.degree);
   Point3 xi_corner[Piece3::kMaxVertices];
@@ -167,6 +169,9 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
   // ds = det [solid edges] dxi
   const double solid_det = volume6(mt.solid[0], mt.solid[1], mt.solid[2], mt.solid[3]);
   clear_points();
+  // dX/ds at each point where the gradient terms read it there; with constant gradients and a quadratic map
+  // only its weighted sum is read, which weigh forms from the points' weights and xi (dX/dxi affine in xi)
+  point_jacobians_ = gradients_ && !(constant_chain(mt) && mt.fitted_degree() == 2);
   double volume = 0;
   piece.for_each_tetrahedron_index([&](int i0, int i1, int i2, int i3) {
     volume += std::fabs(volume6(piece.v[i0], piece.v[i1], piece.v[i2], piece.v[i3])) / 6;
@@ -174,7 +179,7 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
     const double measure = std::fabs(volume6(xt[0], xt[1], xt[2], xt[3])) / 6 * solid_det;
     for (const RulePoint3& rp : rule) {
       const Point3 xi = from_reference(xt, rp.xi);
-      if (!gradients_) {
+      if (!point_jacobians_) {
         add_reference_point(image, kf, xi, reference_position(image, xi), measure * rp.weight);
         continue;
       }
@@ -316,7 +321,7 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
         const Point3 xi = q0 + (rp.xi.x * q1 + rp.xi.y * q2);
         const Point3 y = p0 + (rp.xi.x * p1 + rp.xi.y * p2);
         Point3 x0, D[3], dd;  // X, dX/dxi and dX/dl along the column
-        if (quadratic && !gradients_) {  // X alone (dX/dxi is not read): dX/dl is affine in xi, of slope H d
+        if (quadratic && !point_jacobians_) {  // X alone (dX/dxi is not read): dX/dl affine in xi, of slope H d
           x0 = reference_position(image, xi);
           dd = dd_corner + (xi.x * hd[0] + xi.y * hd[1] + xi.z * hd[2]);
         } else {
@@ -348,7 +353,7 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
           const double t = along.nodes[k] * l;
           const Point3 at = xi + t * d;
           Point3 xt;
-          if (!gradients_) {  // X alone: mass terms on the reference side do not read dX/ds
+          if (!point_jacobians_) {  // X alone
             xt = quadratic ? x0 + t * dd + (0.5 * t * t) * dhd : reference_position(image, at);
             add_reference_point(image, kf, at, xt, along.weights[k] * column);
           } else {
@@ -365,7 +370,7 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
             AcrossPoint& p = across_.emplace_back();
             p.kf = across;
             p.point = {integrand_.fluid.to_reference(across, xt, image.origin), at, -along.weights[k] * column,
-                       gradients_ ? jac_.back() : std::array<double, 9>{}};
+                       point_jacobians_ ? jac_.back() : std::array<double, 9>{}};
           }
         }
       }
@@ -378,11 +383,7 @@ void PointIntegrator3::weigh(const MappedTet& mt, int n, const std::vector<char>
   const bool deferred = deferred_chain(mt), constant = constant_chain(mt), gradients = gradients_ && !listing_;
   if (constant_multiplier_gradients_) gradient_sums_.resize(3 * static_cast<size_t>(fluid_functions_));
   double jw[9] = {};  // constant chain: c1 sum_q w_q J_q
-  if (constant) {
-    for (int q = 0; q < n; ++q)
-      for (int i = 0; i < 9; ++i) jw[i] += weight_[q] * jac_[q][i];
-    for (double& v : jw) v *= integrand_.c1;
-  }
+  if (constant) jacobian_sum(mt, n, jw);
   for (int f = 0; f < fluid_functions_; ++f) {
     if (!read[f]) continue;
     double* v = values_.fluid_value(f);
@@ -415,6 +416,37 @@ void PointIntegrator3::weigh(const MappedTet& mt, int n, const std::vector<char>
     }
     if (sums) std::copy(s, s + 3, sums);
   }
+}
+
+void PointIntegrator3::jacobian_sum(const MappedTet& mt, int n, double (&jw)[9]) const {
+  if (point_jacobians_) {
+    for (int q = 0; q < n; ++q)
+      for (int i = 0; i < 9; ++i) jw[i] += weight_[q] * jac_[q][i];
+  } else {
+    // a quadratic map: dX/ds(xi) = J0 + sum_j xi_j G_j with J0 = dX/ds(0) and G_j = d(dX/ds)/dxi_j (set_jacobian
+    // of dX/dxi(0) and of the hessian's columns: each of the size of dX/ds, whatever the mesh's units), so
+    // sum_q w_q dX/ds(q) = W J0 + sum_j (sum_q w_q xi_q)_j G_j, W = sum_q w_q
+    double w = 0;
+    Point3 wxi;
+    for (int q = 0; q < n; ++q) {
+      w += weight_[q];
+      wxi = wxi + weight_[q] * xi_[q];
+    }
+    double h[3][3][3];
+    mt.reference_hessian(h);
+    Point3 x0, d[3];
+    mt.reference_derivatives(Point3(), x0, d);
+    MapValue3 j0, g[3];
+    mt.set_jacobian(d, j0);
+    for (int j = 0; j < 3; ++j) {
+      for (int i = 0; i < 3; ++i) d[i] = {h[0][i][j], h[1][i][j], h[2][i][j]};
+      mt.set_jacobian(d, g[j]);
+    }
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b)
+        jw[3 * a + b] = w * j0.jac[a][b] + (wxi.x * g[0].jac[a][b] + wxi.y * g[1].jac[a][b] + wxi.z * g[2].jac[a][b]);
+  }
+  for (double& v : jw) v *= integrand_.c1;
 }
 
 void PointIntegrator3::add_pairs(const MappedTet& mt, int n, bool twins, LocalBlock& block) {

@@ -65,7 +65,7 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // outside it, where only the polynomial's values count.
   void add_reference_point(const ClippedImage3& image, int kf, Point3 xi, Point3 x, const Point3 (&d)[3],
                            double weight);
-  // The same without dX/ds (no gradient terms: jac_ is not read).
+  // The same without dX/ds (point_jacobians_ false: jac_ is not read).
   void add_reference_point(const ClippedImage3& image, int kf, Point3 xi, Point3 x, double weight);
   // Folds the weights and the chain rule's jacobian into the fluid functions read (with constant multiplier
   // gradients, into their gradients' sums instead).
@@ -83,6 +83,9 @@ class PointIntegrator3 : public PieceIntegrator3 {
   bool constant_chain(const MappedTet& mt) const {
     return constant_multiplier_gradients_ && !mt.affine && constant_fluid_gradients_;
   }
+  // c1 sum_q w_q dX/ds(q) over the gathered points (constant_chain): from jac_, or where the points carry none
+  // (point_jacobians_ false: a quadratic map), from their weights and reference coordinates.
+  void jacobian_sum(const MappedTet& mt, int n, double (&jw)[9]) const;
   void add_listing(const MappedTet& mt, int n, LocalBlock& block);
 
   const Integrand3& integrand_;
@@ -93,9 +96,11 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // sums each fluid function's weighted chain-rule gradients along the points (gradient_sums_: x, y, z).
   bool constant_multiplier_gradients_;
   bool constant_fluid_gradients_;  // a fluid basis fitted at degree 0 or 1
+  // The gathered points carry dX/ds (jac_) where the map is not affine; on the reference side only where a
+  // gradient term reads it at each point (not under constant_chain with a quadratic map: jacobian_sum).
+  bool point_jacobians_ = true;
   std::vector<double> gradient_sums_;
-  // The gathered points, as PointData's fields (jac_ only where the map is not affine; on the reference side
-  // only with gradient terms).
+  // The gathered points, as PointData's fields (jac_ as point_jacobians_ says).
   std::vector<Point3> eta_, xi_;
   std::vector<double> weight_;
   std::vector<std::array<double, 9>> jac_;
