@@ -424,3 +424,68 @@ TEST(TetrahedronMap, PositionOfACubicMatchesTheFormula) {
                      expect_positions(tm, xi, x, x0);
                    });
 }
+
+// A cubic map (not quadratic: the reference side's general branch, X evaluated along each band column) on a
+// solid box of 48 tetrahedra over a fluid box: lambda^T B u for data polynomial over the image (u of degree 1
+// and 2, lambda affine), mass and gradient terms, against the same integral over the solid tetrahedra by a rule
+// exact for it (u o X of degree 6, lambda (u o X) of degree 7; the gradient term of degree 5: the rule of degree 8).
+// With u of degree 1 both gradients are constant on their elements (the chain rule summed per piece from the
+// points' jacobians), with degree 2 not.
+TEST(TetrahedronMap, CubicMapCouplingOfPolynomialDataIsExact) {
+  const Mesh3 solid = box_mesh(2, 2, 2, {-0.3, -0.25, -0.2}, {0.6, 0.5, 0.45});
+  const Mesh3 fluid = box_mesh(4, 4, 4, {-0.8, -0.8, -0.8}, {1.6, 1.6, 1.6});
+  auto x_of = [](Point3 s, double j[3][3]) {
+    j[0][0] = 1 + 0.9 * s.x * s.x + 0.2 * s.y;
+    j[0][1] = 0.2 * s.x;
+    j[0][2] = 0;
+    j[1][0] = 0.3 * s.z;
+    j[1][1] = 1 - 0.6 * s.y * s.z;
+    j[1][2] = 0.3 * s.x - 0.3 * s.y * s.y;
+    j[2][0] = 0.4 * s.y * s.z;
+    j[2][1] = 0.4 * s.x * s.z;
+    j[2][2] = 1 + 0.4 * s.x * s.y + 0.6 * s.z * s.z;
+    return Point3{s.x + 0.3 * s.x * s.x * s.x + 0.2 * s.x * s.y, s.y - 0.3 * s.y * s.y * s.z + 0.3 * s.x * s.z,
+                  s.z + 0.4 * s.x * s.y * s.z + 0.2 * s.z * s.z * s.z};
+  };
+  const FormulaMap3 map(solid, [&](Point3 s, Point3& x, double j[3][3]) { x = x_of(s, j); }, 3);
+  const P1Tet multiplier(solid), fluid_p1(fluid);
+  const P2Tet fluid_p2(fluid);
+  auto lambda = [](Point3 s) { return 1 + 0.5 * s.x - 0.3 * s.y + 0.2 * s.z; };
+  const Point3 grad_lambda{0.5, -0.3, 0.2};
+  const std::vector<double> lam = interpolate(multiplier, lambda);
+  struct Data {
+    const Basis3& space;
+    std::function<double(Point3)> u;
+    std::function<Point3(Point3)> grad_u;
+    std::vector<double> dofs;
+  };
+  auto u1 = [](Point3 y) { return 0.3 + y.x - 2 * y.y + y.z; };
+  auto u2 = [](Point3 y) { return y.x * y.x + y.y * y.z - y.z; };
+  const Data data[2] = {{fluid_p1, u1, [](Point3) { return Point3{1, -2, 1}; }, interpolate(fluid_p1, u1)},
+                        {fluid_p2, u2, [](Point3 y) { return Point3{2 * y.x, y.z, y.y - 1}; }, interpolate(fluid_p2, u2)}};
+  for (const Data& d : data) {
+    const std::vector<double>& u = d.dofs;
+    for (double c1 : {0.0, 0.7}) {
+      const double c2 = 1.3;
+      double exact = 0;  // int_S c2 lambda u(X) + c1 grad lambda . (dX/ds^T grad u(X)) ds
+      for (int k = 0; k < static_cast<int>(solid.tetrahedra.size()); ++k) {
+        Point3 corner[4];
+        solid.corners(k, corner);
+        const double volume = dot(corner[1] - corner[0], cross(corner[2] - corner[0], corner[3] - corner[0])) / 6;
+        for (const RulePoint3& q : tetrahedron_rule(8)) {
+          const Point3 s = from_reference(corner, q.xi);
+          double j[3][3];
+          const Point3 y = x_of(s, j);
+          const Point3 g = d.grad_u(y);
+          const Point3 jt{j[0][0] * g.x + j[1][0] * g.y + j[2][0] * g.z, j[0][1] * g.x + j[1][1] * g.y + j[2][1] * g.z,
+                          j[0][2] * g.x + j[1][2] * g.y + j[2][2] * g.z};
+          exact += q.weight * volume * (c2 * lambda(s) * d.u(y) + c1 * dot(grad_lambda, jt));
+        }
+      }
+      CouplingReport report;
+      const CsrMatrix b = couple(fluid, d.space, solid, multiplier, map, c1, c2, &report);
+      EXPECT_NEAR(bilinear(b, lam, u), exact, 1e-13 * std::fabs(exact))
+          << "fluid degree " << (&d.space == &fluid_p1 ? 1 : 2) << ", c1 " << c1 << ": " << report.summary();
+    }
+  }
+}
