@@ -200,7 +200,8 @@ void add_orbits(std::vector<RulePoint3>& r, const SymmetricTetRule& rule) {
 std::vector<RulePoint3> make_tetrahedron_rule(int degree) {
   // Degrees 6 to 9: symmetric rules of positive weights and interior points whose nodes and weights were solved
   // for this project (Levenberg-Marquardt on the moment equations of the monomials of degree <= d, from random
-  // starts, in long double) to a relative residual below 3e-18; Rules3d tests their exactness.
+  // starts, in long double: tests/reference/tet_rules.cpp) to a relative residual below 3e-18; Rules3d tests their
+  // exactness.
   std::vector<RulePoint3> r;
   if (degree <= 1) {
     r.push_back({{0.25, 0.25, 0.25}, 1.0});
