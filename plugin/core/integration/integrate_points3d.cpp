@@ -263,8 +263,9 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
   // a quadratic map along a column: X(xi + l d) = X + l D d + l^2 (d^T H d) / 2, D(xi + l d) = D + l H d
   double hessian[3][3][3];
   const bool quadratic = mt.reference_hessian(hessian);
-  Point3 x_corner, D_corner[3];  // dX/dxi at xi = 0 (quadratic maps: dX/dxi(xi) = D_corner + H xi)
-  if (quadratic) reference_value(image, Point3(), x_corner, D_corner);
+  // dX/dxi at xi = 0, for the face points' slopes when they take X alone (a quadratic map: dX/dxi = D_corner + H xi)
+  Point3 x_corner, D_corner[3];
+  if (quadratic && !point_jacobians_) reference_value(image, Point3(), x_corner, D_corner);
   // The face points must not depend on the side: the pieces' vertices are not numbered in any order
   // (clip_filtered), so they are ordered by a linear function of their position in a direction that no mesh
   // is aligned with (a tie, two vertices at the same value, is then an accident of measure zero).
@@ -305,7 +306,7 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
                  hessian[1][i][0] * d.x + hessian[1][i][1] * d.y + hessian[1][i][2] * d.z,
                  hessian[2][i][0] * d.x + hessian[2][i][1] * d.y + hessian[2][i][2] * d.z};
       dhd = d.x * hd[0] + d.y * hd[1] + d.z * hd[2];
-      dd_corner = d.x * D_corner[0] + d.y * D_corner[1] + d.z * D_corner[2];
+      if (!point_jacobians_) dd_corner = d.x * D_corner[0] + d.y * D_corner[1] + d.z * D_corner[2];
     }
     // the fan from the face's least vertex in order(), each triangle's other corners in that order
     int first = s;
@@ -352,20 +353,18 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
         for (size_t k = 0; k < along.nodes.size(); ++k) {
           const double t = along.nodes[k] * l;
           const Point3 at = xi + t * d;
-          Point3 xt;
-          if (!point_jacobians_) {  // X alone
-            xt = quadratic ? x0 + t * dd + (0.5 * t * t) * dhd : reference_position(image, at);
-            add_reference_point(image, kf, at, xt, along.weights[k] * column);
-          } else {
-            Point3 Dt[3];
-            if (quadratic) {
-              xt = x0 + t * dd + (0.5 * t * t) * dhd;
+          Point3 xt, Dt[3];  // X there, and dX/dxi where the points carry it
+          if (quadratic) {
+            xt = x0 + t * dd + (0.5 * t * t) * dhd;
+            if (point_jacobians_)
               for (int c = 0; c < 3; ++c) Dt[c] = D[c] + t * hd[c];
-            } else {
-              reference_value(image, at, xt, Dt);
-            }
-            add_reference_point(image, kf, at, xt, Dt, along.weights[k] * column);
+          } else if (point_jacobians_) {
+            reference_value(image, at, xt, Dt);
+          } else {
+            xt = reference_position(image, at);
           }
+          if (point_jacobians_) add_reference_point(image, kf, at, xt, Dt, along.weights[k] * column);
+          else add_reference_point(image, kf, at, xt, along.weights[k] * column);
           if (across >= 0) {
             AcrossPoint& p = across_.emplace_back();
             p.kf = across;

@@ -34,19 +34,40 @@ void sum_polynomial(const double (*c)[monomial_count3(TetrahedronMap::kMaxDegree
   for (int i = 0; i < 3; ++i) d[i] = {g[i][0], g[i][1], g[i][2]};
 }
 
-// The same for degree 2 written out: monomials 1, xi1, xi2, xi3, xi1^2, xi1 xi2, xi2^2, xi1 xi3, xi2 xi3, xi3^2
-// (lattice3d.hpp's order), each derivative's terms summed from zero in that order, as the loop above does.
+// The monomials of degree <= 2 at xi: 1, xi1, xi2, xi3, xi1^2, xi1 xi2, xi2^2, xi1 xi3, xi2 xi3, xi3^2
+// (lattice3d.hpp's order).
+inline void quadratic_monomials(Point3 xi, double (&v)[10]) {
+  v[0] = 1;
+  v[1] = xi.x;
+  v[2] = xi.y;
+  v[3] = xi.z;
+  v[4] = xi.x * xi.x;
+  v[5] = xi.x * xi.y;
+  v[6] = xi.y * xi.y;
+  v[7] = xi.x * xi.z;
+  v[8] = xi.y * xi.z;
+  v[9] = xi.z * xi.z;
+}
+
+// sum_m ca[m] v[m] over the ten monomials from monomial first on (0 or 1), in order: the sum starts from the
+// constant term (0 + c0 * 1 is c0) and runs a fixed loop after it, unrolled.
+inline double quadratic_sum(const double* ca, const double (&v)[10], int first) {
+  double sum = first == 0 ? ca[0] : 0.0;
+  for (int m = 1; m < 10; ++m) sum += ca[m] * v[m];
+  return sum;
+}
+
+// The same as sum_polynomial for degree 2 written out, each derivative's terms summed from zero in that order,
+// as its loop does.
 void sum_quadratic(const double (*c)[monomial_count3(TetrahedronMap::kMaxDegree)], Point3 xi, Point3& x,
                    Point3 d[3], int first) {
-  const double v[10] = {1, xi.x, xi.y, xi.z, xi.x * xi.x, xi.x * xi.y, xi.y * xi.y, xi.x * xi.z, xi.y * xi.z,
-                        xi.z * xi.z};
+  double v[10];
+  quadratic_monomials(xi, v);
   const double x2 = 2 * xi.x, y2 = 2 * xi.y, z2 = 2 * xi.z;
   double s[3], g[3][3];
   for (int a = 0; a < 3; ++a) {
     const double* ca = c[a];
-    double sum = first == 0 ? ca[0] : 0.0;  // 0 + c0 * 1: a fixed loop after it, unrolled
-    for (int m = 1; m < 10; ++m) sum += ca[m] * v[m];
-    s[a] = sum;
+    s[a] = quadratic_sum(ca, v, first);
     g[0][a] = ca[1] + ca[4] * x2 + ca[5] * xi.y + ca[7] * xi.z;  // d/dxi1: xi1, xi1^2, xi1 xi2, xi1 xi3
     g[1][a] = ca[2] + ca[5] * xi.x + ca[6] * y2 + ca[8] * xi.z;  // d/dxi2: xi2, xi1 xi2, xi2^2, xi2 xi3
     g[2][a] = ca[3] + ca[7] * xi.x + ca[8] * xi.y + ca[9] * z2;  // d/dxi3: xi3, xi1 xi3, xi2 xi3, xi3^2
@@ -67,16 +88,10 @@ void TetrahedronMap::polynomial(Point3 xi, Point3& x, Point3 d[3], int first) co
 
 Point3 TetrahedronMap::polynomial_value(Point3 xi, int first) const {
   double s[3];
-  if (degree_ == 2) {  // sum_quadratic's monomials and sums, in its order
-    const double v[10] = {1, xi.x, xi.y, xi.z, xi.x * xi.x, xi.x * xi.y, xi.y * xi.y, xi.x * xi.z, xi.y * xi.z,
-                          xi.z * xi.z};
-    for (int a = 0; a < 3; ++a) {
-      const double* ca = c_[a];
-      double sum = first == 0 ? ca[0] : 0.0;
-      for (int m = 1; m < 10; ++m) sum += ca[m] * v[m];
-      s[a] = sum;
-    }
-    return {s[0], s[1], s[2]};
+  if (degree_ == 2) {  // sum_quadratic's sums
+    double v[10];
+    quadratic_monomials(xi, v);
+    return {quadratic_sum(c_[0], v, first), quadratic_sum(c_[1], v, first), quadratic_sum(c_[2], v, first)};
   }
   double v[monomial_count3(kMaxDegree)];
   monomial_values3(degree_, xi, v);
