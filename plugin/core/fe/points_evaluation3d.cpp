@@ -62,13 +62,22 @@ void PolynomialTerms3::set(int degree, const double* coef, std::size_t width) {
   }
   // The monomial rows the sums read, with the rows they are formed from; and the monomials of degree - 1
   // whose weighted sums the derivatives read.
-  std::vector<char> need(nm, 0), moment(std::max(nm1, 1), 0);
+  std::vector<char> need(nm, 0), moment(std::max(nm1, 1), 0), value(nm, 0);
   for (std::size_t slot = 0; slot < constant_.size(); ++slot)
     for (int t = start_[slot]; t < start_[slot + 1]; ++t) {
       need[monomial_[t]] = 1;
       if (slot % 4 != 0) moment[monomial_[t]] = 1;
+      else value[monomial_[t]] = 1;
     }
+  // the same for the values alone (weighted_sums without the gradients)
+  read_.clear();
+  value_read_.clear();
+  for (int m = 1; m < nm; ++m) {
+    if (need[m]) read_.push_back(m);
+    if (value[m]) value_read_.push_back(m);
+  }
   rows_ = rows_with_parents(need);
+  value_rows_ = rows_with_parents(value);
   moments_.assign(1, 0);
   for (int m = 1; m < nm1; ++m)
     if (moment[m]) moments_.push_back(m);
@@ -229,6 +238,49 @@ void PolynomialTerms3::evaluate_gradient_sums(const int* twin, const double* j, 
   }
   copy_twins(twin, width_, n, value);
   copy_twins(twin, width_, 3, gradient_sum);
+}
+
+void PolynomialTerms3::weighted_sums(const int* twin, const double* j, const Point3* xi, const double* weight,
+                                     int count, int n, double* value_sum, double* gradient_sum) const {
+  const int nm = monomial_count3(degree_);
+  thread_local std::vector<double> scratch, moment;
+  if (scratch.size() < static_cast<std::size_t>(nm) * n) scratch.resize(static_cast<std::size_t>(nm) * n);
+  if (moment.size() < static_cast<std::size_t>(nm) * count) moment.resize(static_cast<std::size_t>(nm) * count);
+  double* mono = scratch.data();
+  monomial_rows3(degree_, gradient_sum ? rows_ : value_rows_, xi, n, mono);
+  // M_km = sum_p weight_k[p] (monomial m)(p) for the monomials the terms read (M_k0: the weights' sum)
+  const std::vector<int>& read = gradient_sum ? read_ : value_read_;
+  for (int k = 0; k < count; ++k) {
+    const double* w = weight + static_cast<std::size_t>(k) * n;
+    double* mk = moment.data() + static_cast<std::size_t>(k) * nm;
+    mk[0] = weighted_sum(w, mono, n);
+    for (int m : read) mk[m] = weighted_sum(w, mono + static_cast<std::size_t>(m) * n, n);
+  }
+  auto sum = [&](std::size_t slot, const double* mk) {
+    double s = constant_[slot] * mk[0];
+    for (int t = start_[slot]; t < start_[slot + 1]; ++t) s += coefficient_[t] * mk[monomial_[t]];
+    return s;
+  };
+  for (std::size_t f = 0; f < width_; ++f) {
+    if (twin && twin[f] >= 0) continue;  // copied below
+    for (int k = 0; k < count; ++k) {
+      const double* mk = moment.data() + static_cast<std::size_t>(k) * nm;
+      value_sum[count * f + k] = sum(4 * f, mk);
+      if (!gradient_sum) continue;
+      const double r[3] = {sum(4 * f + 1, mk), sum(4 * f + 2, mk), sum(4 * f + 3, mk)};
+      double* g = gradient_sum + 3 * (count * f + k);
+      for (int a = 0; a < 3; ++a) g[a] = r[0] * j[a] + r[1] * j[3 + a] + r[2] * j[6 + a];
+    }
+  }
+  copy_twins(twin, width_, count, value_sum);
+  if (gradient_sum) copy_twins(twin, width_, 3 * static_cast<std::size_t>(count), gradient_sum);
+}
+
+void weighted_sums_polynomials3(int degree, const double* coef, std::size_t width, const double* j, const Point3* xi,
+                                const double* weight, int count, int n, double* value_sum, double* gradient_sum) {
+  thread_local PolynomialTerms3 terms;
+  terms.set(degree, coef, width);
+  terms.weighted_sums(nullptr, j, xi, weight, count, n, value_sum, gradient_sum);
 }
 
 void evaluate_polynomials3_gradient_sums(int degree, const double* coef, std::size_t width, const double* j,

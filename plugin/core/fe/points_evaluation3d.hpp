@@ -32,6 +32,14 @@ class PolynomialTerms3 {
   void evaluate_gradient_sums(const int* twin, const double* j, const Point3* xi, const double* weight, int n,
                               double* value, double* gradient_sum) const;
 
+  // Weighted sums along the points for count weight vectors at once (weight_k = weight + k n): per function f
+  // and k < count, value_sum[count f + k] = sum_p weight_k[p] phi_f(p) and, when gradient_sum is not null,
+  // gradient_sum[3 (count f + k) + a] = sum_p weight_k[p] d phi_f / d x_a (p) through j = d xi / d x. Only the
+  // weighted sums M_km of the monomials the terms read are formed along the points; each sum is then its
+  // constant times M_k0 plus its terms' coefficients times M_km.
+  void weighted_sums(const int* twin, const double* j, const Point3* xi, const double* weight, int count, int n,
+                     double* value_sum, double* gradient_sum) const;
+
   // Integrals from moments (integrate_monomials3d.hpp). With M_m = sum_p weight[p] xi^m(p) for the monomials
   // of degree <= degree + 1 (numbered as for that degree), a function's weighted sums are linear in the
   // M_m: sum_p w phi = sum_t c_t M_(m_t), sum_p w xi_k phi = sum_t c_t M_(m_t xi_k), and the derivatives'
@@ -58,6 +66,9 @@ class PolynomialTerms3 {
   // The monomial rows >= 4 that evaluate forms (those the terms read and their parents), ascending; the
   // monomials whose weighted sums the derivatives read (0 first).
   std::vector<int> rows_, moments_;
+  // The monomials >= 1 that the terms read, ascending; those the values' terms read, and the rows >= 4 that
+  // form them (weighted_sums without the gradients).
+  std::vector<int> read_, value_read_, value_rows_;
   // For moments (prepare_moments): the rows >= 4 formed and the monomials whose M_m are read, in the
   // numbering of degree + 1; times_[3 t + k]: monomial_[t] times xi_(k+1) in that numbering.
   std::vector<int> moment_rows_, moment_list_, times_;
@@ -66,6 +77,8 @@ class PolynomialTerms3 {
 // The same for one call (the terms formed on the way): a fit used once.
 void evaluate_polynomials3(int degree, const double* coef, std::size_t width, const int* twin, const double* j,
                            const Point3* xi, int n, double* value, double* gradient);
+void weighted_sums_polynomials3(int degree, const double* coef, std::size_t width, const double* j, const Point3* xi,
+                                const double* weight, int count, int n, double* value_sum, double* gradient_sum);
 void evaluate_polynomials3_gradient_sums(int degree, const double* coef, std::size_t width, const double* j,
                                          const Point3* xi, const double* weight, int n, double* value,
                                          double* gradient_sum);

@@ -89,6 +89,17 @@ void PolynomialBasis3::evaluate_gradient_sums(int k, const Point3* xi, const dou
                                       value, gradient_sum);
 }
 
+void PolynomialBasis3::weighted_sums(int k, const Point3* xi, const double* weight, int count, int n,
+                                     double* value_sum, double* gradient_sum) const {
+  if (shared(k) && !terms_.empty()) {
+    terms_.weighted_sums(twin_.empty() ? nullptr : twin_.data(), inverse_jacobian(k), xi, weight, count, n, value_sum,
+                         gradient_sum);
+    return;
+  }
+  weighted_sums_polynomials3(degree_, coefficients(k), functions_.size(), inverse_jacobian(k), xi, weight, count, n,
+                             value_sum, gradient_sum);
+}
+
 void PolynomialBasis3::evaluate(int k, Point3 xi, double* out) const {
   if (degree_ < 0) {
     basis_.evaluate(k, xi, out);

@@ -37,6 +37,11 @@ class PolynomialBasis3 {
   void evaluate_gradient_sums(int k, const Point3* xi, const double* weight, int n, double* value,
                               double* gradient_sum) const;
 
+  // Weighted sums of the fitted functions and of their physical gradients along the points for count weight
+  // vectors at once (PolynomialTerms3::weighted_sums; fitted() only).
+  void weighted_sums(int k, const Point3* xi, const double* weight, int count, int n, double* value_sum,
+                     double* gradient_sum) const;
+
   // Integrals from the monomial moments of a piece in element k's reference coordinates
   // (PolynomialTerms3::prepare_moments, integrate): on the elements of the shared fit only.
   bool integrates_moments(int k) const { return shared(k) && terms_.moments_prepared(); }

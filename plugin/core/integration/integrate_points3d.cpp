@@ -20,10 +20,13 @@ PointIntegrator3::PointIntegrator3(const Integrand3& integrand, CouplingReport& 
       constant_multiplier_gradients_(gradients_ && !listing_ && integrand.multiplier.fitted() &&
                                      integrand.multiplier.degree() <= 1),
       constant_fluid_gradients_(integrand.fluid.fitted() && integrand.fluid.degree() <= 1),
+      linear_multiplier_(!listing_ && integrand.fluid.fitted() && integrand.multiplier.fitted() &&
+                         integrand.multiplier.degree() <= 1),
       fluid_(fluid), values_(integrand) {}
 
 double PointIntegrator3::integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) {
   across_.clear();
+  across_jac_.clear();
   const double volume = gather(image, kf, piece);
   add_gathered(image.tetrahedron, kf, block);
   if (!across_.empty()) add_across(image.tetrahedron, block);
@@ -41,10 +44,10 @@ void PointIntegrator3::add_across(const MappedTet& mt, LocalBlock& block) {
         across_[kept++] = a;
         continue;
       }
-      eta_.push_back(a.point.eta);
-      xi_.push_back(a.point.xi);
-      weight_.push_back(a.point.weight);
-      if (point_jacobians_) jac_.push_back(a.point.jac);
+      eta_.push_back(a.eta);
+      xi_.push_back(a.xi);
+      weight_.push_back(a.weight);
+      if (point_jacobians_) jac_.push_back(across_jac_[a.jac]);
     }
     across_.resize(kept);
     block.enter_fluid_element(fluid_->dofs(kf));
@@ -75,6 +78,10 @@ void PointIntegrator3::add_gathered(const MappedTet& mt, int kf, LocalBlock& blo
   const int n = static_cast<int>(eta_.size());
   if (n == 0) return;
   counts_.points += n;
+  if (moment_chain(mt)) {
+    add_weighted_sums(mt, kf, n, block);
+    return;
+  }
   if (deferred_chain(mt)) {
     values_.evaluate_fluid_gradient_sums(kf, eta_.data(), weight_.data(), mt.k, xi_.data(), n);
   } else if (constant_chain(mt)) {
@@ -143,19 +150,27 @@ inline Point3 PointIntegrator3::reference_position(const ClippedImage3& image, P
   return mt.position(xi);
 }
 
-inline void PointIntegrator3::add_reference_point(const ClippedImage3& image, int kf, Point3 xi, Point3 x,
-                                                  const Point3 (&d)[3], double weight) {
+inline void PointIntegrator3::add_jacobian(const ClippedImage3& image, const Point3 (&d)[3]) {
   MapValue3 mv;
   image.tetrahedron.set_jacobian(d, mv);
   std::array<double, 9>& jac = jac_.emplace_back();
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b) jac[3 * a + b] = mv.jac[a][b];
+}
+
+inline void PointIntegrator3::add_reference_point(const ClippedImage3& image, int kf, Point3 xi, Point3 x,
+                                                  const Point3 (&d)[3], double weight) {
+  add_jacobian(image, d);
   add_reference_point(image, kf, xi, x, weight);
 }
 
 inline void PointIntegrator3::add_reference_point(const ClippedImage3& image, int kf, Point3 xi, Point3 x,
                                                   double weight) {
-  eta_.push_back(integrand_.fluid.to_reference(kf, x, image.origin));
+  add_reference_point(integrand_.fluid.to_reference(kf, x, image.origin), xi, weight);
+}
+
+inline void PointIntegrator3::add_reference_point(Point3 eta, Point3 xi, double weight) {
+  eta_.push_back(eta);
   xi_.push_back(xi);
   weight_.push_back(weight);
 }
@@ -171,7 +186,7 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
   clear_points();
   // dX/ds at each point where the gradient terms read it there; with constant gradients and a quadratic map
   // only its weighted sum is read, which weigh forms from the points' weights and xi (dX/dxi affine in xi)
-  point_jacobians_ = gradients_ && !(constant_chain(mt) && mt.fitted_degree() == 2);
+  point_jacobians_ = gradients_ && !(mt.fitted_degree() == 2 && (constant_chain(mt) || moment_chain(mt)));
   double volume = 0;
   piece.for_each_tetrahedron_index([&](int i0, int i1, int i2, int i3) {
     volume += std::fabs(volume6(piece.v[i0], piece.v[i1], piece.v[i2], piece.v[i3])) / 6;
@@ -231,6 +246,28 @@ int PointIntegrator3::fluid_plane(const ClippedImage3& image, const Point3 (&cor
   return -1;
 }
 
+namespace {
+
+// j v for a row-major 3 x 3 matrix j (an element's d xi / d x).
+inline Point3 linear_part(const double* j, Point3 v) {
+  return {j[0] * v.x + j[1] * v.y + j[2] * v.z, j[3] * v.x + j[4] * v.y + j[5] * v.z,
+          j[6] * v.x + j[7] * v.y + j[8] * v.z};
+}
+
+// The band's axis for a face whose plane's preimage has gradient z (grad_xi (n . A)): of the solid's axes (axis,
+// in reference coordinates) the one with the largest |z . axis_a|, the first within 1e-9 of it (both sides of
+// the face, whose n differ by a positive factor and round-off, choose the same), signed so that n . A grows
+// along it by rise.
+Point3 column_axis(Point3 z, const Point3 (&axis)[3], double& rise) {
+  const double g[3] = {dot(z, axis[0]), dot(z, axis[1]), dot(z, axis[2])};
+  const double largest = std::max({std::fabs(g[0]), std::fabs(g[1]), std::fabs(g[2])});
+  const int a = std::fabs(g[0]) >= (1 - 1e-9) * largest ? 0 : std::fabs(g[1]) >= (1 - 1e-9) * largest ? 1 : 2;
+  rise = std::fabs(g[a]);
+  return (g[a] > 0 ? 1.0 : -1.0) * axis[a];
+}
+
+}  // namespace
+
 // The band. On a face of the piece in a face plane of kf (n . y = c, n outward), the straight image's
 // boundary A(xi) lies where the true one X(xi) does not: the true piece ends where q(xi) = n . X(xi) - c
 // vanishes, past the face (q < 0 on it: X(xi) still inside kf) or short of it (q > 0). The band between
@@ -244,10 +281,11 @@ int PointIntegrator3::fluid_plane(const ClippedImage3& image, const Point3 (&cor
 // whatever the sub-tetrahedra and solid tetrahedra it crosses, so that a kink along one fluid plane is
 // integrated to round-off. What is left, where the integrand jumps: t^2 per unit length where the axis
 // changes, where a column leaves the solid, and where two fluid faces meet (each plane's columns end at the
-// other's straight image, not at its true preimage). The pieces on either side of a fluid face take the same
-// face points (a fan from the face's least vertex, each triangle's corners in that order: order() below), the
-// same column, and opposite signs: they add up to the band's integral of f_K - f_K', to round-off where f
-// does not jump.
+// other's straight image, not at its true preimage). Each column adds f_K and, with the opposite sign, f_K' of the
+// fluid tetrahedron across, at the same points: the band's integral of f_K - f_K', to round-off where f does not
+// jump. Where the face is inside the sub-tetrahedron's image, one of the two pieces takes the columns for both;
+// where it lies on the sub-tetrahedron's boundary, each side takes those going into its own, from the same face
+// points (a fan from the face's least vertex, each triangle's corners in that order: order() below).
 void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Piece3& piece, const Point3* xi_corner,
                                    double solid_det) {
   const MappedTet& mt = image.tetrahedron;
@@ -271,10 +309,9 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
   // is aligned with (a tie, two vertices at the same value, is then an accident of measure zero).
   const Point3 probe{0.8472130847939790, 0.3089153715245366, 0.4323690461218483};
   auto order = [&piece, probe](int v) { return dot(piece.v[v], probe); };
-  // the face's rule, for int_0^l f (degree 2 p + 2 where l is quadratic), and the column's (xi + s d is affine in
-  // s: f is a polynomial of degree p in s)
+  // the face's rule, for int_0^l f (degree 2 p + 2 where l is quadratic; along the column, add_column's rule of
+  // degree p: xi + s d is affine in s, f a polynomial of degree p in s)
   const auto& face_rule = triangle_rule(std::min(60, 2 * image.degree + 2));
-  const LineRule& along = line_rule(image.degree);
   Point3 corner[4];  // kf's, for fluid_plane
   if (fluid_) fluid_->mesh().corners(kf, corner);
   for (int f = 0; f < piece.faces; ++f) {
@@ -284,22 +321,26 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
     bool on_boundary = false;
     const int j = fluid_plane(image, corner, common, on_boundary);
     if (j < 0) continue;
-    const int across = on_boundary ? fluid_->mesh().neighbours[kf][j] : -1;  // the fluid tetrahedron across
+    // The fluid tetrahedron across. Where the sub-tetrahedron's image crosses the face plane, the piece across
+    // has the same face, the same columns with the opposite sign: the one in the lower-numbered fluid tetrahedron
+    // takes the columns for both (add_across adds the other's).
+    const int across = fluid_ ? fluid_->mesh().neighbours[kf][j] : -1;
+    if (!on_boundary && across >= 0 && across < kf) continue;
     const Point3 n = j == 0 ? r1 + r2 + r3 : -1.0 * (j == 1 ? r1 : j == 2 ? r2 : r3);
     const Point3 w{dot(ey[0], n), dot(ey[1], n), dot(ey[2], n)};  // E_y^T n
     // z = E_xi^-T w: z . ex[i] = w_i, by the cofactors of E_xi
     const Point3 z = (1 / ex_det) * (w.x * cross(ex[1], ex[2]) + w.y * cross(ex[2], ex[0]) + w.z * cross(ex[0], ex[1]));
     const double grad = std::sqrt(dot(z, z));
     if (!(grad > 0)) continue;
-    // the axis: the largest |d(n . A)/ds_a| = |z . d_a|, the first within 1e-9 of it (both sides of the face,
-    // whose n differ by a positive factor and round-off, choose the same)
-    const double g[3] = {dot(z, axis[0]), dot(z, axis[1]), dot(z, axis[2])};
-    const double largest = std::max({std::fabs(g[0]), std::fabs(g[1]), std::fabs(g[2])});
-    const int a = std::fabs(g[0]) >= (1 - 1e-9) * largest ? 0 : std::fabs(g[1]) >= (1 - 1e-9) * largest ? 1 : 2;
-    const Point3 d = (g[a] > 0 ? 1.0 : -1.0) * axis[a];  // outward: n . A grows along d
-    const double rise = std::fabs(g[a]);                 // d(n . A) along d
-    const double height = rise / grad;                   // d . nu: a column's height per unit of l
-    Point3 hd[3], dhd, dd_corner;  // (H d)_i = d(dX/dxi_i) along d; d^T H d; dX/dl at xi = 0 (quadratic maps)
+    double rise;                                    // d(n . A) along d
+    const Point3 d = column_axis(z, axis, rise);    // outward: n . A grows along d
+    const double height = rise / grad;              // d . nu: a column's height per unit of l
+    BandFace face;
+    face.d = d;
+    face.quadratic = quadratic;
+    face.across = across;
+    Point3 (&hd)[3] = face.hd;
+    Point3 &dhd = face.dhd, dd_corner;  // dX/dl at xi = 0 (quadratic maps)
     if (quadratic) {
       for (int i = 0; i < 3; ++i)
         hd[i] = {hessian[0][i][0] * d.x + hessian[0][i][1] * d.y + hessian[0][i][2] * d.z,
@@ -307,6 +348,8 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
                  hessian[2][i][0] * d.x + hessian[2][i][1] * d.y + hessian[2][i][2] * d.z};
       dhd = d.x * hd[0] + d.y * hd[1] + d.z * hd[2];
       if (!point_jacobians_) dd_corner = d.x * D_corner[0] + d.y * D_corner[1] + d.z * D_corner[2];
+      face.eta_dhd = linear_part(integrand_.fluid.inverse_jacobian(kf), dhd);
+      if (across >= 0) face.across_dhd = linear_part(integrand_.fluid.inverse_jacobian(across), dhd);
     }
     // the fan from the face's least vertex in order(), each triangle's other corners in that order
     int first = s;
@@ -349,31 +392,54 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
         // the root continuous with -c0 / c1 as c2 -> 0, in the form without cancellation
         const double l = disc >= 0 ? -2 * c0 / (c1 + std::sqrt(disc)) : -c0 / c1;
         if (on_boundary && !(l < 0)) continue;
-        const double column = l * height * area * rp.weight;
-        for (size_t k = 0; k < along.nodes.size(); ++k) {
-          const double t = along.nodes[k] * l;
-          const Point3 at = xi + t * d;
-          Point3 xt, Dt[3];  // X there, and dX/dxi where the points carry it
-          if (quadratic) {
-            xt = x0 + t * dd + (0.5 * t * t) * dhd;
-            if (point_jacobians_)
-              for (int c = 0; c < 3; ++c) Dt[c] = D[c] + t * hd[c];
-          } else if (point_jacobians_) {
-            reference_value(image, at, xt, Dt);
-          } else {
-            xt = reference_position(image, at);
-          }
-          if (point_jacobians_) add_reference_point(image, kf, at, xt, Dt, along.weights[k] * column);
-          else add_reference_point(image, kf, at, xt, along.weights[k] * column);
-          if (across >= 0) {
-            AcrossPoint& p = across_.emplace_back();
-            p.kf = across;
-            p.point = {integrand_.fluid.to_reference(across, xt, image.origin), at, -along.weights[k] * column,
-                       point_jacobians_ ? jac_.back() : std::array<double, 9>{}};
-          }
-        }
+        add_column(image, kf, face, xi, x0, dd, D, l, l * height * area * rp.weight);
       }
     }
+  }
+}
+
+// Along a quadratic map's column X(xi + t d) = x0 + t dd + t^2 dhd / 2 and dX/dxi = D + t H d; the fluid
+// elements' reference coordinates are affine in X, so they follow the same way from their value and slope at t = 0.
+void PointIntegrator3::add_column(const ClippedImage3& image, int kf, const BandFace& face, Point3 xi, Point3 x0,
+                                  Point3 dd, const Point3 (&D)[3], double l, double column) {
+  const PolynomialBasis3& fluid = integrand_.fluid;
+  const LineRule& along = line_rule(image.degree);
+  const int across = face.across;
+  Point3 eta0, eta1, across0, across1;  // at t = 0 and d/dt, in kf and in the fluid tetrahedron across
+  if (face.quadratic) {
+    eta0 = fluid.to_reference(kf, x0, image.origin);
+    eta1 = linear_part(fluid.inverse_jacobian(kf), dd);
+    if (across >= 0) {
+      across0 = fluid.to_reference(across, x0, image.origin);
+      across1 = linear_part(fluid.inverse_jacobian(across), dd);
+    }
+  }
+  for (size_t k = 0; k < along.nodes.size(); ++k) {
+    const double t = along.nodes[k] * l, weight = along.weights[k] * column;
+    const Point3 at = xi + t * face.d;
+    Point3 xt, Dt[3];  // X there (maps that are not quadratic), and dX/dxi where the points carry it
+    if (face.quadratic) {
+      if (point_jacobians_)
+        for (int c = 0; c < 3; ++c) Dt[c] = D[c] + t * face.hd[c];
+    } else if (point_jacobians_) {
+      reference_value(image, at, xt, Dt);
+    } else {
+      xt = reference_position(image, at);
+    }
+    if (point_jacobians_) add_jacobian(image, Dt);
+    const double h = 0.5 * t * t;
+    add_reference_point(face.quadratic ? eta0 + t * eta1 + h * face.eta_dhd : fluid.to_reference(kf, xt, image.origin),
+                        at, weight);
+    if (across < 0) continue;
+    AcrossPoint& p = across_.emplace_back();
+    p.kf = across;
+    p.eta = face.quadratic ? across0 + t * across1 + h * face.across_dhd : fluid.to_reference(across, xt, image.origin);
+    p.xi = at;
+    p.weight = -weight;
+    p.jac = -1;
+    if (!point_jacobians_) continue;
+    p.jac = static_cast<int>(across_jac_.size());
+    across_jac_.push_back(jac_.back());
   }
 }
 
@@ -431,21 +497,101 @@ void PointIntegrator3::jacobian_sum(const MappedTet& mt, int n, double (&jw)[9])
       w += weight_[q];
       wxi = wxi + weight_[q] * xi_[q];
     }
-    double h[3][3][3];
-    mt.reference_hessian(h);
-    Point3 x0, d[3];
-    mt.reference_derivatives(Point3(), x0, d);
     MapValue3 j0, g[3];
-    mt.set_jacobian(d, j0);
-    for (int j = 0; j < 3; ++j) {
-      for (int i = 0; i < 3; ++i) d[i] = {h[0][i][j], h[1][i][j], h[2][i][j]};
-      mt.set_jacobian(d, g[j]);
-    }
+    chain_matrices(mt, Point3(), j0, g);
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b)
         jw[3 * a + b] = w * j0.jac[a][b] + (wxi.x * g[0].jac[a][b] + wxi.y * g[1].jac[a][b] + wxi.z * g[2].jac[a][b]);
   }
   for (double& v : jw) v *= integrand_.c1;
+}
+
+void PointIntegrator3::chain_matrices(const MappedTet& mt, Point3 xi, MapValue3& j0, MapValue3 (&g)[3]) const {
+  double h[3][3][3];
+  mt.reference_hessian(h);
+  Point3 x0, d[3];
+  mt.reference_derivatives(xi, x0, d);
+  mt.set_jacobian(d, j0);
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 3; ++i) d[i] = {h[0][i][j], h[1][i][j], h[2][i][j]};
+    mt.set_jacobian(d, g[j]);
+  }
+}
+
+// About a point c of the batch (its first: the terms below are then of the points' spread, not of the
+// tetrahedron's size, and cancel less), with W_0 = w and W_j = w (xi - c)_j, V_k(phi) = sum_q W_k(q) phi(q) and
+// P_k(phi) = sum_q W_k(q) grad_y phi(q):
+//   sum_q w psi phi = psi(c) V_0 + sum_j dpsi/dxi_j V_j,
+//   sum_q w grad_s psi . (dX/ds^T grad_y phi) = grad_s psi . (J(c)^T P_0 + sum_j G_j^T P_j),
+// grad_s psi constant on the tetrahedron. The same rule as point by point, regrouped.
+void PointIntegrator3::add_weighted_sums(const MappedTet& mt, int kf, int n, LocalBlock& block) {
+  const PolynomialBasis3 &fluid = integrand_.fluid, &multiplier = integrand_.multiplier;
+  const size_t nf = static_cast<size_t>(fluid_functions_), nn = static_cast<size_t>(n);
+  const size_t ns = multiplier.functions().size();
+  if (sum_weight_.size() < 4 * nn) sum_weight_.resize(4 * nn);
+  value_sum_.resize(4 * nf + 4 * ns);
+  gradient_sum_.resize(12 * nf + 3 * ns + 3 * nf);
+  multiplier_values_.resize(ns);
+  const Point3 c = xi_[0];
+  double* w = sum_weight_.data();
+  for (int q = 0; q < n; ++q) {
+    const double wq = weight_[q];
+    const Point3 r = xi_[q] - c;
+    w[q] = wq;
+    w[nn + q] = wq * r.x;
+    w[2 * nn + q] = wq * r.y;
+    w[3 * nn + q] = wq * r.z;
+  }
+  double* vs = value_sum_.data();     // V_k of fluid function f at 4 f + k
+  double* psi = vs + 4 * nf;          // psi(c), then dpsi/dxi_j, at 4 b + (0, 1 + j)
+  double* ps = gradient_sum_.data();  // P_k of f at 3 (4 f + k)
+  double* gpsi = ps + 12 * nf;        // grad_s psi of b at 3 b
+  double* chain = gpsi + 3 * ns;      // c1 (J(c)^T P_0 + sum_j G_j^T P_j) of f at 3 f
+  fluid.weighted_sums(kf, eta_.data(), w, 4, n, vs, gradients_ ? ps : nullptr);
+  // the multiplier at c, and its derivatives in xi: its fitted coefficients of xi_1, xi_2, xi_3 (degree 1)
+  multiplier.values_affine(mt.k, c, multiplier_values_.data());
+  const double* coefficient = multiplier.coefficients(mt.k);
+  const bool linear = multiplier.degree() == 1;
+  for (size_t b = 0; b < ns; ++b) {
+    psi[4 * b] = multiplier_values_[b];
+    for (int j = 1; j < 4; ++j) psi[4 * b + j] = linear ? coefficient[4 * b + j] : 0;
+  }
+  if (gradients_) {
+    multiplier.evaluate_affine(mt.k, c, multiplier_values_.data(), gpsi);
+    MapValue3 jc, g[3];
+    chain_matrices(mt, c, jc, g);
+    const MapValue3* m[4] = {&jc, &g[0], &g[1], &g[2]};
+    for (size_t f = 0; f < nf; ++f)
+      for (int b = 0; b < 3; ++b) {
+        double sum = 0;
+        for (int k = 0; k < 4; ++k) {
+          const double* p = ps + 3 * (4 * f + k);
+          sum += p[0] * m[k]->jac[0][b] + p[1] * m[k]->jac[1][b] + p[2] * m[k]->jac[2][b];
+        }
+        chain[3 * f + b] = integrand_.c1 * sum;
+      }
+  }
+  const double c2 = integrand_.c2;
+  const ComponentPairs& pairs = integrand_.pairs;
+  for (size_t pi = 0; pi < pairs.size(); ++pi) {
+    const ComponentPair& pair = pairs[pi];
+    for (size_t a = 0; a < pair.fluid_functions.size(); ++a) {
+      const size_t f = static_cast<size_t>(pair.fluid_functions[a]);
+      const double* v = vs + 4 * f;
+      double* col = block.column(pair.fluid_first + static_cast<int>(a)) + pair.solid_first;
+      for (size_t i = 0; i < pair.solid_functions.size(); ++i) {
+        const size_t b = static_cast<size_t>(pair.solid_functions[i]);
+        const double* p = psi + 4 * b;
+        double sum = c2 * (p[0] * v[0] + p[1] * v[1] + p[2] * v[2] + p[3] * v[3]);
+        if (gradients_) {
+          const double* gs = gpsi + 3 * b;
+          const double* ch = chain + 3 * f;
+          sum += gs[0] * ch[0] + gs[1] * ch[1] + gs[2] * ch[2];
+        }
+        col[i] += sum;
+      }
+    }
+  }
 }
 
 void PointIntegrator3::add_pairs(const MappedTet& mt, int n, bool twins, LocalBlock& block) {

@@ -52,6 +52,18 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // planes' true preimages; xi_corner the piece's corners taken back, solid_det 6 |solid tetrahedron|.
   void gather_band(const ClippedImage3& image, int kf, const Piece3& piece, const Point3* xi_corner,
                    double solid_det);
+  // A band face's columns: the axis d (in xi), a quadratic map's H d (dX/dxi's slope along d) and d^T H d, with
+  // the latter in the reference coordinates of kf and of the fluid tetrahedron across (-1: none).
+  struct BandFace {
+    Point3 d, hd[3], dhd, eta_dhd, across_dhd;
+    bool quadratic = false;
+    int across = -1;
+  };
+  // The points of one column (gather_band): from xi, where X is x0, dX/dl is dd and dX/dxi is D (where the
+  // points carry it), to l, the column's weight int_face's l height dA; in kf, and with the opposite weight in
+  // the fluid tetrahedron across (across_).
+  void add_column(const ClippedImage3& image, int kf, const BandFace& face, Point3 xi, Point3 x0, Point3 dd,
+                  const Point3 (&D)[3], double l, double column);
   // The face of kf (corner: its vertices; j: the face opposite vertex j) whose plane holds the piece's face
   // whose vertices share the planes common (Piece3::planes' bits), or -1; on_boundary when that face is on the
   // sub-tetrahedron's boundary.
@@ -67,6 +79,10 @@ class PointIntegrator3 : public PieceIntegrator3 {
                            double weight);
   // The same without dX/ds (point_jacobians_ false: jac_ is not read).
   void add_reference_point(const ClippedImage3& image, int kf, Point3 xi, Point3 x, double weight);
+  // dX/ds from d[i] = dX/dxi_i, into jac_.
+  void add_jacobian(const ClippedImage3& image, const Point3 (&d)[3]);
+  // The same with the point's reference coordinates in kf, eta, given.
+  void add_reference_point(Point3 eta, Point3 xi, double weight);
   // Folds the weights and the chain rule's jacobian into the fluid functions read (with constant multiplier
   // gradients, into their gradients' sums instead).
   void weigh(const MappedTet& mt, int n, const std::vector<char>& read);
@@ -83,6 +99,19 @@ class PointIntegrator3 : public PieceIntegrator3 {
   bool constant_chain(const MappedTet& mt) const {
     return constant_multiplier_gradients_ && !mt.affine && constant_fluid_gradients_;
   }
+  // A multiplier fitted at degree 0 or 1 (not the listings' product) and a quadratic map: about a point c,
+  // psi(xi) = psi(c) + sum_j (xi - c)_j dpsi/dxi_j and dX/ds(xi) = J(c) + sum_j (xi - c)_j G_j are affine in xi,
+  // so every term is a weighted sum along the points of a fluid function or of its gradient, with the four
+  // weights w, w (xi - c)_1, w (xi - c)_2, w (xi - c)_3 (add_weighted_sums, c a point of the batch): only the
+  // fluid's monomials are formed at the points.
+  bool moment_chain(const MappedTet& mt) const {
+    return linear_multiplier_ && !mt.affine && mt.fitted_degree() == 2;
+  }
+  void add_weighted_sums(const MappedTet& mt, int kf, int n, LocalBlock& block);
+  // A quadratic map's dX/ds(xi + r) = J + sum_j r_j G_j about xi: J = dX/ds(xi) and G_j = d(dX/ds)/dxi_j, each
+  // formed by set_jacobian (of dX/dxi(xi) and of the hessian's columns), so each is of the size of dX/ds
+  // whatever the mesh's units.
+  void chain_matrices(const MappedTet& mt, Point3 xi, MapValue3& j, MapValue3 (&g)[3]) const;
   // c1 sum_q w_q dX/ds(q) over the gathered points (constant_chain): from jac_, or where the points carry none
   // (point_jacobians_ false: a quadratic map), from their weights and reference coordinates.
   void jacobian_sum(const MappedTet& mt, int n, double (&jw)[9]) const;
@@ -96,6 +125,8 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // sums each fluid function's weighted chain-rule gradients along the points (gradient_sums_: x, y, z).
   bool constant_multiplier_gradients_;
   bool constant_fluid_gradients_;  // a fluid basis fitted at degree 0 or 1
+  bool linear_multiplier_;  // fitted bases, the multiplier at degree 0 or 1, not the listings' product
+  std::vector<double> sum_weight_, value_sum_, gradient_sum_, multiplier_values_;  // add_weighted_sums'
   // The gathered points carry dX/ds (jac_) where the map is not affine; on the reference side only where a
   // gradient term reads it at each point (not under constant_chain with a quadratic map: jacobian_sum).
   bool point_jacobians_ = true;
@@ -107,12 +138,14 @@ class PointIntegrator3 : public PieceIntegrator3 {
   void clear_points();
   const FluidSide3* fluid_;
   // Band points of the fluid tetrahedron across a face plane of the piece's (gather_band), added after the
-  // piece's own (add_across).
+  // piece's own (add_across); their dX/ds, where the points carry it, at across_jac_[jac].
   struct AcrossPoint {
-    int kf;
-    PointData point;
+    int kf, jac;
+    Point3 eta, xi;
+    double weight;
   };
   std::vector<AcrossPoint> across_;
+  std::vector<std::array<double, 9>> across_jac_;
   void add_across(const MappedTet& mt, LocalBlock& block);
   PointValues3 values_;
 };
