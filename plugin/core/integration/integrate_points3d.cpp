@@ -184,9 +184,9 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
   // ds = det [solid edges] dxi
   const double solid_det = volume6(mt.solid[0], mt.solid[1], mt.solid[2], mt.solid[3]);
   clear_points();
-  // dX/ds at each point where the gradient terms read it there; with constant gradients and a quadratic map
-  // only its weighted sum is read, which weigh forms from the points' weights and xi (dX/dxi affine in xi)
-  point_jacobians_ = gradients_ && !(mt.fitted_degree() == 2 && (constant_chain(mt) || moment_chain(mt)));
+  // dX/ds at each point where the gradient terms read it there (not under moment_chain: add_weighted_sums forms
+  // it from the points' weights and xi, dX/dxi being affine in xi)
+  point_jacobians_ = gradients_ && !moment_chain(mt);
   double volume = 0;
   piece.for_each_tetrahedron_index([&](int i0, int i1, int i2, int i3) {
     volume += std::fabs(volume6(piece.v[i0], piece.v[i1], piece.v[i2], piece.v[i3])) / 6;
@@ -448,7 +448,7 @@ void PointIntegrator3::weigh(const MappedTet& mt, int n, const std::vector<char>
   const bool deferred = deferred_chain(mt), constant = constant_chain(mt), gradients = gradients_ && !listing_;
   if (constant_multiplier_gradients_) gradient_sums_.resize(3 * static_cast<size_t>(fluid_functions_));
   double jw[9] = {};  // constant chain: c1 sum_q w_q J_q
-  if (constant) jacobian_sum(mt, n, jw);
+  if (constant) jacobian_sum(n, jw);
   for (int f = 0; f < fluid_functions_; ++f) {
     if (!read[f]) continue;
     double* v = values_.fluid_value(f);
@@ -483,26 +483,9 @@ void PointIntegrator3::weigh(const MappedTet& mt, int n, const std::vector<char>
   }
 }
 
-void PointIntegrator3::jacobian_sum(const MappedTet& mt, int n, double (&jw)[9]) const {
-  if (point_jacobians_) {
-    for (int q = 0; q < n; ++q)
-      for (int i = 0; i < 9; ++i) jw[i] += weight_[q] * jac_[q][i];
-  } else {
-    // a quadratic map: dX/ds(xi) = J0 + sum_j xi_j G_j with J0 = dX/ds(0) and G_j = d(dX/ds)/dxi_j (set_jacobian
-    // of dX/dxi(0) and of the hessian's columns: each of the size of dX/ds, whatever the mesh's units), so
-    // sum_q w_q dX/ds(q) = W J0 + sum_j (sum_q w_q xi_q)_j G_j, W = sum_q w_q
-    double w = 0;
-    Point3 wxi;
-    for (int q = 0; q < n; ++q) {
-      w += weight_[q];
-      wxi = wxi + weight_[q] * xi_[q];
-    }
-    MapValue3 j0, g[3];
-    chain_matrices(mt, Point3(), j0, g);
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b)
-        jw[3 * a + b] = w * j0.jac[a][b] + (wxi.x * g[0].jac[a][b] + wxi.y * g[1].jac[a][b] + wxi.z * g[2].jac[a][b]);
-  }
+void PointIntegrator3::jacobian_sum(int n, double (&jw)[9]) const {
+  for (int q = 0; q < n; ++q)
+    for (int i = 0; i < 9; ++i) jw[i] += weight_[q] * jac_[q][i];
   for (double& v : jw) v *= integrand_.c1;
 }
 

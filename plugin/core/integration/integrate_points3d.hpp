@@ -93,9 +93,10 @@ class PointIntegrator3 : public PieceIntegrator3 {
   bool deferred_chain(const MappedTet& mt) const {
     return constant_multiplier_gradients_ && mt.affine && integrand_.fluid.fitted();
   }
-  // Constant multiplier gradients, a map that is not affine and a fluid basis fitted at degree 0 or 1: both
-  // gradients are constant, so sum_q w_q grad psi . (J_q^T grad phi) = grad psi . (sum_q w_q J_q)^T grad phi:
-  // weigh sums the weighted jacobians once for all fluid functions (PointValues3::evaluate_constant_gradients).
+  // Constant multiplier gradients, a map that is neither affine nor quadratic (those go to moment_chain) and a
+  // fluid basis fitted at degree 0 or 1: both gradients are constant, so sum_q w_q grad psi . (J_q^T grad phi) =
+  // grad psi . (sum_q w_q J_q)^T grad phi: weigh sums the weighted jacobians once for all fluid functions
+  // (PointValues3::evaluate_constant_gradients).
   bool constant_chain(const MappedTet& mt) const {
     return constant_multiplier_gradients_ && !mt.affine && constant_fluid_gradients_;
   }
@@ -112,9 +113,8 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // formed by set_jacobian (of dX/dxi(xi) and of the hessian's columns), so each is of the size of dX/ds
   // whatever the mesh's units.
   void chain_matrices(const MappedTet& mt, Point3 xi, MapValue3& j, MapValue3 (&g)[3]) const;
-  // c1 sum_q w_q dX/ds(q) over the gathered points (constant_chain): from jac_, or where the points carry none
-  // (point_jacobians_ false: a quadratic map), from their weights and reference coordinates.
-  void jacobian_sum(const MappedTet& mt, int n, double (&jw)[9]) const;
+  // c1 sum_q w_q dX/ds(q) over the gathered points (constant_chain), from jac_.
+  void jacobian_sum(int n, double (&jw)[9]) const;
   void add_listing(const MappedTet& mt, int n, LocalBlock& block);
 
   const Integrand3& integrand_;
@@ -128,7 +128,7 @@ class PointIntegrator3 : public PieceIntegrator3 {
   bool linear_multiplier_;  // fitted bases, the multiplier at degree 0 or 1, not the listings' product
   std::vector<double> sum_weight_, value_sum_, gradient_sum_, multiplier_values_;  // add_weighted_sums'
   // The gathered points carry dX/ds (jac_) where the map is not affine; on the reference side only where a
-  // gradient term reads it at each point (not under constant_chain with a quadratic map: jacobian_sum).
+  // gradient term reads it at each point (not under moment_chain: add_weighted_sums).
   bool point_jacobians_ = true;
   std::vector<double> gradient_sums_;
   // The gathered points, as PointData's fields (jac_ as point_jacobians_ says).
