@@ -13,4 +13,40 @@ inline double weighted_sum(const double* w, const double* row, int n) {
   return (s[0] + s[1]) + (s[2] + s[3]);
 }
 
+// out[a * nb + b] = sum_p x[a][p] y[b][p] for a < na, b < nb: the products of two sets of rows along the
+// points, in blocks of 2 x 4 rows whose eight sums run side by side (each point's six values loaded once for
+// eight products, where a sum at a time loads two for one), one running sum each; the rows left over by the
+// blocks as weighted_sum.
+inline void row_products(const double* const* x, int na, const double* const* y, int nb, int n, double* out) {
+  int a = 0;
+  for (; a + 2 <= na; a += 2) {
+    int b = 0;
+    for (; b + 4 <= nb; b += 4) {
+      const double *x0 = x[a], *x1 = x[a + 1], *y0 = y[b], *y1 = y[b + 1], *y2 = y[b + 2], *y3 = y[b + 3];
+      double s00 = 0, s01 = 0, s02 = 0, s03 = 0, s10 = 0, s11 = 0, s12 = 0, s13 = 0;
+      for (int p = 0; p < n; ++p) {
+        const double u = x0[p], v = x1[p], c0 = y0[p], c1 = y1[p], c2 = y2[p], c3 = y3[p];
+        s00 += u * c0;
+        s01 += u * c1;
+        s02 += u * c2;
+        s03 += u * c3;
+        s10 += v * c0;
+        s11 += v * c1;
+        s12 += v * c2;
+        s13 += v * c3;
+      }
+      double* o0 = out + static_cast<long>(a) * nb + b;
+      double* o1 = o0 + nb;
+      o0[0] = s00, o0[1] = s01, o0[2] = s02, o0[3] = s03;
+      o1[0] = s10, o1[1] = s11, o1[2] = s12, o1[3] = s13;
+    }
+    for (; b < nb; ++b) {
+      out[static_cast<long>(a) * nb + b] = weighted_sum(x[a], y[b], n);
+      out[static_cast<long>(a + 1) * nb + b] = weighted_sum(x[a + 1], y[b], n);
+    }
+  }
+  for (; a < na; ++a)
+    for (int b = 0; b < nb; ++b) out[static_cast<long>(a) * nb + b] = weighted_sum(x[a], y[b], n);
+}
+
 }  // namespace dlmfsi

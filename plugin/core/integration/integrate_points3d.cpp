@@ -583,35 +583,49 @@ void PointIntegrator3::add_pairs(const MappedTet& mt, int n, bool twins, LocalBl
   // gradients weigh formed); with grad psi constant on the tetrahedron (a multiplier fitted at degree 0 or
   // 1), grad psi . (sum_q g_q), the sums weigh formed.
   const bool deferred = deferred_chain(mt) || constant_chain(mt);  // the multiplier's gradients at one point
-  auto gradient_term = [&](int f, const double* gphi, const double* gpsi) {
-    if (!constant_multiplier_gradients_) {
-      double sum = 0;
-      for (int q = 0; q < n; ++q)
-        sum += gpsi[q] * gphi[q] + gpsi[n + q] * gphi[n + q] + gpsi[2 * n + q] * gphi[2 * n + q];
-      return sum;
-    }
-    const double* g = &gradient_sums_[3 * static_cast<size_t>(f)];
-    const int stride = deferred ? 1 : n;  // deferred: the multiplier's gradients at one point
-    return gpsi[0] * g[0] + gpsi[stride] * g[1] + gpsi[2 * stride] * g[2];
-  };
+  // With gradients at the points, their sums over the three components are products of rows of 3 n values.
+  const bool point_gradients = gradients_ && !listing_ && !constant_multiplier_gradients_;
   for (size_t p = 0; p < pairs.size(); ++p) {
     const ComponentPair& pair = pairs[p];
     if (twins && pair.source >= 0) continue;  // added with its source
     const std::vector<int>&fi = pair.fluid_functions, &si = pair.solid_functions;
-    for (size_t a = 0; a < fi.size(); ++a) {
-      const double* phi = values_.fluid_value(fi[a]);
+    const int na = static_cast<int>(fi.size()), nb = static_cast<int>(si.size());
+    rows_.resize(2 * static_cast<size_t>(na + nb));
+    const double** phi = rows_.data();
+    const double** psi = phi + na;
+    const double** gphi = psi + nb;
+    const double** gpsi = gphi + na;
+    for (int a = 0; a < na; ++a) {
+      phi[a] = values_.fluid_value(fi[a]);
       // with constant multiplier gradients only the sums are read (deferred: the gradients are not formed)
-      const double* gphi = constant_multiplier_gradients_ ? nullptr : values_.fluid_gradient(fi[a]);
-      double* col = block.column(pair.fluid_first + static_cast<int>(a)) + pair.solid_first;
-      for (size_t b = 0; b < si.size(); ++b) {
-        const double* psi = values_.multiplier_value(si[b]);
-        const double* gpsi =
-            deferred ? values_.multiplier_constant_gradient(si[b]) : values_.multiplier_gradient(si[b]);
-        double sum = weighted_sum(psi, phi, n);
-        if (gradients_ && !listing_) sum += gradient_term(fi[a], gphi, gpsi);
+      if (point_gradients) gphi[a] = values_.fluid_gradient(fi[a]);
+    }
+    for (int b = 0; b < nb; ++b) {
+      psi[b] = values_.multiplier_value(si[b]);
+      if (point_gradients) gpsi[b] = values_.multiplier_gradient(si[b]);
+    }
+    products_.resize(2 * static_cast<size_t>(na) * nb);
+    double* value = products_.data();
+    double* gradient = value + static_cast<size_t>(na) * nb;
+    row_products(phi, na, psi, nb, n, value);
+    if (point_gradients) row_products(gphi, na, gpsi, nb, 3 * n, gradient);
+    for (int a = 0; a < na; ++a) {
+      double* col = block.column(pair.fluid_first + a) + pair.solid_first;
+      for (int b = 0; b < nb; ++b) {
+        double sum = value[a * nb + b];
+        if (point_gradients) {
+          sum += gradient[a * nb + b];
+        } else if (gradients_ && !listing_) {
+          // grad psi constant on the tetrahedron: grad psi . (sum_q g_q), the sums weigh formed
+          const double* g = &gradient_sums_[3 * static_cast<size_t>(fi[a])];
+          const double* gs =
+              deferred ? values_.multiplier_constant_gradient(si[b]) : values_.multiplier_gradient(si[b]);
+          const int stride = deferred ? 1 : n;  // deferred: the multiplier's gradients at one point
+          sum += gs[0] * g[0] + gs[stride] * g[1] + gs[2 * stride] * g[2];
+        }
         col[b] += sum;
         if (twins)
-          for (int copy : pair.copies) block.column(pairs[copy].fluid_first + static_cast<int>(a))[pairs[copy].solid_first + static_cast<int>(b)] += sum;
+          for (int copy : pair.copies) block.column(pairs[copy].fluid_first + a)[pairs[copy].solid_first + b] += sum;
       }
     }
   }

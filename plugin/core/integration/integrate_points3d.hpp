@@ -127,6 +127,8 @@ class PointIntegrator3 : public PieceIntegrator3 {
   bool constant_fluid_gradients_;  // a fluid basis fitted at degree 0 or 1
   bool linear_multiplier_;  // fitted bases, the multiplier at degree 0 or 1, not the listings' product
   std::vector<double> sum_weight_, value_sum_, gradient_sum_, multiplier_values_;  // add_weighted_sums'
+  std::vector<const double*> rows_;  // add_pairs': the pair's rows of values and gradients
+  std::vector<double> products_;     // and their products
   // The gathered points carry dX/ds (jac_) where the map is not affine; on the reference side only where a
   // gradient term reads it at each point (not under moment_chain: add_weighted_sums).
   bool point_jacobians_ = true;
