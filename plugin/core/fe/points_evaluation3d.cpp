@@ -248,13 +248,23 @@ void PolynomialTerms3::weighted_sums(const int* twin, const double* j, const Poi
   if (moment.size() < static_cast<std::size_t>(nm) * count) moment.resize(static_cast<std::size_t>(nm) * count);
   double* mono = scratch.data();
   monomial_rows3(degree_, gradient_sum ? rows_ : value_rows_, xi, n, mono);
-  // M_km = sum_p weight_k[p] (monomial m)(p) for the monomials the terms read (M_k0: the weights' sum)
+  // M_km = sum_p weight_k[p] (monomial m)(p) for the monomials the terms read (M_k0: the weights' sum), as
+  // products of rows
   const std::vector<int>& read = gradient_sum ? read_ : value_read_;
+  const int nr = static_cast<int>(read.size()) + 1;
+  thread_local std::vector<const double*> rows;
+  thread_local std::vector<double> product;
+  rows.resize(static_cast<std::size_t>(count + nr));
+  product.resize(static_cast<std::size_t>(count) * nr);
+  for (int k = 0; k < count; ++k) rows[k] = weight + static_cast<std::size_t>(k) * n;
+  rows[count] = mono;
+  for (int r = 1; r < nr; ++r) rows[count + r] = mono + static_cast<std::size_t>(read[r - 1]) * n;
+  row_products(rows.data(), count, rows.data() + count, nr, n, product.data());
   for (int k = 0; k < count; ++k) {
-    const double* w = weight + static_cast<std::size_t>(k) * n;
     double* mk = moment.data() + static_cast<std::size_t>(k) * nm;
-    mk[0] = weighted_sum(w, mono, n);
-    for (int m : read) mk[m] = weighted_sum(w, mono + static_cast<std::size_t>(m) * n, n);
+    const double* pk = product.data() + static_cast<std::size_t>(k) * nr;
+    mk[0] = pk[0];
+    for (int r = 1; r < nr; ++r) mk[read[r - 1]] = pk[r];
   }
   auto sum = [&](std::size_t slot, const double* mk) {
     double s = constant_[slot] * mk[0];

@@ -10,6 +10,7 @@
 #include "geometry/predicates3d.hpp"
 #include "map/pull_back3d.hpp"
 #include "fe/rules.hpp"
+#include "fe/lattice3d.hpp"
 #include "fe/weighted_sum.hpp"
 
 namespace dlmfsi {
@@ -20,8 +21,8 @@ PointIntegrator3::PointIntegrator3(const Integrand3& integrand, CouplingReport& 
       constant_multiplier_gradients_(gradients_ && !listing_ && integrand.multiplier.fitted() &&
                                      integrand.multiplier.degree() <= 1),
       constant_fluid_gradients_(integrand.fluid.fitted() && integrand.fluid.degree() <= 1),
-      linear_multiplier_(!listing_ && integrand.fluid.fitted() && integrand.multiplier.fitted() &&
-                         integrand.multiplier.degree() <= 1),
+      polynomial_multiplier_(!listing_ && integrand.fluid.fitted() && integrand.multiplier.fitted() &&
+                             integrand.multiplier.degree() <= 2),
       fluid_(fluid), values_(integrand) {}
 
 double PointIntegrator3::integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) {
@@ -501,57 +502,114 @@ void PointIntegrator3::chain_matrices(const MappedTet& mt, Point3 xi, MapValue3&
   }
 }
 
+namespace {
+
+// r^e for a small integer e >= 0.
+inline double power(double r, int e) {
+  double out = 1;
+  for (int k = 0; k < e; ++k) out *= r;
+  return out;
+}
+
+// The polynomials coef (monomial_count3(degree) coefficients each, in xi, lattice3d.hpp's order) about c:
+// out[count f + g] is the coefficient of (xi - c)^g of function f, from (c + r)^a = sum_(g <= a) binom(a, g)
+// c^(a - g) r^g coordinate by coordinate.
+void taylor_coefficients(const double* coef, int degree, std::size_t width, Point3 c, double* out) {
+  const int count = monomial_count3(degree);
+  static const double binomial[4][4] = {{1, 0, 0, 0}, {1, 1, 0, 0}, {1, 2, 1, 0}, {1, 3, 3, 1}};
+  std::fill(out, out + count * width, 0.0);
+  for (int m = 0; m < count; ++m) {
+    int a[3];
+    monomial_exponents3(m, a[0], a[1], a[2]);
+    for (int gx = 0; gx <= a[0]; ++gx)
+      for (int gy = 0; gy <= a[1]; ++gy)
+        for (int gz = 0; gz <= a[2]; ++gz) {
+          const double factor = binomial[a[0]][gx] * power(c.x, a[0] - gx) * binomial[a[1]][gy] *
+                                power(c.y, a[1] - gy) * binomial[a[2]][gz] * power(c.z, a[2] - gz);
+          const int g = monomial_index3(gx, gy, gz);
+          for (std::size_t f = 0; f < width; ++f) out[count * f + g] += factor * coef[count * f + m];
+        }
+  }
+}
+
+}  // namespace
+
 // About a point c of the batch (its first: the terms below are then of the points' spread, not of the
-// tetrahedron's size, and cancel less), with W_0 = w and W_j = w (xi - c)_j, V_k(phi) = sum_q W_k(q) phi(q) and
-// P_k(phi) = sum_q W_k(q) grad_y phi(q):
-//   sum_q w psi phi = psi(c) V_0 + sum_j dpsi/dxi_j V_j,
-//   sum_q w grad_s psi . (dX/ds^T grad_y phi) = grad_s psi . (J(c)^T P_0 + sum_j G_j^T P_j),
-// grad_s psi constant on the tetrahedron. The same rule as point by point, regrouped.
+// tetrahedron's size, and cancel less), r = xi - c, with the weights W_g = w r^g (the monomials of degree <= m,
+// the multiplier's degree), V_g(phi) = sum_q W_g(q) phi(q) and P_g(phi) = sum_q W_g(q) grad_y phi(q):
+//   sum_q w psi phi = sum_g A_g V_g, psi = sum_g A_g r^g its Taylor form about c,
+//   sum_q w grad_s psi . (dX/ds^T grad_y phi) = sum_q w (dX/ds grad_s psi) . grad_y phi = sum_g u_g . P_g,
+// where dX/ds grad_s psi = (J(c) + sum_j r_j G_j) K^T grad_xi psi (K = dxi/ds) = sum_g u_g r^g, a polynomial of
+// degree m in r. The same rule as point by point, regrouped.
 void PointIntegrator3::add_weighted_sums(const MappedTet& mt, int kf, int n, LocalBlock& block) {
   const PolynomialBasis3 &fluid = integrand_.fluid, &multiplier = integrand_.multiplier;
-  const size_t nf = static_cast<size_t>(fluid_functions_), nn = static_cast<size_t>(n);
+  const int degree = multiplier.degree(), count = monomial_count3(degree);
+  const size_t nf = static_cast<size_t>(fluid_functions_), nn = static_cast<size_t>(n), cc = count;
   const size_t ns = multiplier.functions().size();
-  if (sum_weight_.size() < 4 * nn) sum_weight_.resize(4 * nn);
-  value_sum_.resize(4 * nf + 4 * ns);
-  gradient_sum_.resize(12 * nf + 3 * ns + 3 * nf);
-  multiplier_values_.resize(ns);
+  if (sum_weight_.size() < cc * nn) sum_weight_.resize(cc * nn);
+  value_sum_.resize(cc * (nf + ns));
+  gradient_sum_.resize(3 * cc * (nf + ns));
   const Point3 c = xi_[0];
   double* w = sum_weight_.data();
-  for (int q = 0; q < n; ++q) {
-    const double wq = weight_[q];
-    const Point3 r = xi_[q] - c;
-    w[q] = wq;
-    w[nn + q] = wq * r.x;
-    w[2 * nn + q] = wq * r.y;
-    w[3 * nn + q] = wq * r.z;
+  // W_0 = w, W of the degree-1 monomials w r_i, each further one its parent's times one coordinate of r
+  for (int q = 0; q < n; ++q) w[q] = weight_[q];
+  if (degree > 0)
+    for (int q = 0; q < n; ++q) {
+      const Point3 r = xi_[q] - c;
+      w[nn + q] = weight_[q] * r.x;
+      w[2 * nn + q] = weight_[q] * r.y;
+      w[3 * nn + q] = weight_[q] * r.z;
+    }
+  const auto& parents = monomial_parents3();
+  for (int g = 4; g < count; ++g) {
+    const double* from = w + parents[g].parent * nn;
+    double* to = w + g * nn;
+    const int axis = parents[g].axis;
+    for (int q = 0; q < n; ++q) {
+      const Point3 r = xi_[q] - c;
+      to[q] = from[q] * (axis == 0 ? r.x : axis == 1 ? r.y : r.z);
+    }
   }
-  double* vs = value_sum_.data();     // V_k of fluid function f at 4 f + k
-  double* psi = vs + 4 * nf;          // psi(c), then dpsi/dxi_j, at 4 b + (0, 1 + j)
-  double* ps = gradient_sum_.data();  // P_k of f at 3 (4 f + k)
-  double* gpsi = ps + 12 * nf;        // grad_s psi of b at 3 b
-  double* chain = gpsi + 3 * ns;      // c1 (J(c)^T P_0 + sum_j G_j^T P_j) of f at 3 f
-  fluid.weighted_sums(kf, eta_.data(), w, 4, n, vs, gradients_ ? ps : nullptr);
-  // the multiplier at c, and its derivatives in xi: its fitted coefficients of xi_1, xi_2, xi_3 (degree 1)
-  multiplier.values_affine(mt.k, c, multiplier_values_.data());
-  const double* coefficient = multiplier.coefficients(mt.k);
-  const bool linear = multiplier.degree() == 1;
-  for (size_t b = 0; b < ns; ++b) {
-    psi[4 * b] = multiplier_values_[b];
-    for (int j = 1; j < 4; ++j) psi[4 * b + j] = linear ? coefficient[4 * b + j] : 0;
-  }
+  double* vs = value_sum_.data();     // V_g of fluid function f at count f + g
+  double* taylor = vs + cc * nf;      // A_g of multiplier function b at count b + g
+  double* ps = gradient_sum_.data();  // P_g of f at 3 (count f + g)
+  double* u = ps + 3 * cc * nf;       // c1 u_g of b at 3 (count b + g)
+  fluid.weighted_sums(kf, eta_.data(), w, count, n, vs, gradients_ ? ps : nullptr);
+  taylor_coefficients(multiplier.coefficients(mt.k), degree, ns, c, taylor);
   if (gradients_) {
-    multiplier.evaluate_affine(mt.k, c, multiplier_values_.data(), gpsi);
-    MapValue3 jc, g[3];
-    chain_matrices(mt, c, jc, g);
-    const MapValue3* m[4] = {&jc, &g[0], &g[1], &g[2]};
-    for (size_t f = 0; f < nf; ++f)
-      for (int b = 0; b < 3; ++b) {
-        double sum = 0;
-        for (int k = 0; k < 4; ++k) {
-          const double* p = ps + 3 * (4 * f + k);
-          sum += p[0] * m[k]->jac[0][b] + p[1] * m[k]->jac[1][b] + p[2] * m[k]->jac[2][b];
+    MapValue3 jc, gj[3];
+    chain_matrices(mt, c, jc, gj);
+    const double* k = multiplier.inverse_jacobian(mt.k);  // k[3 i + j] = dxi_i / ds_j
+    std::fill(u, u + 3 * cc * ns, 0.0);
+    for (size_t b = 0; b < ns; ++b)
+      for (int g = 0; g < count; ++g) {
+        // the coefficient of r^h in d psi / d xi_i is (h_i + 1) A_(h + e_i), here with h + e_i = g
+        int e[3];
+        monomial_exponents3(g, e[0], e[1], e[2]);
+        double grad_xi[3] = {0, 0, 0};  // of r^h in grad_xi psi, h = g - e_i (g_i > 0)
+        for (int i = 0; i < 3; ++i) {
+          if (e[i] == 0) continue;
+          int h[3] = {e[0], e[1], e[2]};
+          --h[i];
+          const int hi = monomial_index3(h[0], h[1], h[2]);
+          std::fill(grad_xi, grad_xi + 3, 0.0);
+          grad_xi[i] = e[i] * taylor[cc * b + g];
+          // grad_s = K^T grad_xi; then J(c) grad_s to r^h, G_j grad_s to r^(h + e_j)
+          double grad_s[3];
+          for (int a = 0; a < 3; ++a) grad_s[a] = k[3 * i + a] * grad_xi[i];
+          auto add = [&](const MapValue3& m, int to) {
+            if (to < 0) return;
+            double* out = u + 3 * (cc * b + to);
+            for (int a = 0; a < 3; ++a)
+              out[a] += integrand_.c1 * (m.jac[a][0] * grad_s[0] + m.jac[a][1] * grad_s[1] + m.jac[a][2] * grad_s[2]);
+          };
+          add(jc, hi);
+          for (int j = 0; j < 3; ++j) {
+            int t[3] = {h[0], h[1], h[2]};
+            ++t[j];
+            add(gj[j], t[0] + t[1] + t[2] <= degree ? monomial_index3(t[0], t[1], t[2]) : -1);
+          }
         }
-        chain[3 * f + b] = integrand_.c1 * sum;
       }
   }
   const double c2 = integrand_.c2;
@@ -560,16 +618,18 @@ void PointIntegrator3::add_weighted_sums(const MappedTet& mt, int kf, int n, Loc
     const ComponentPair& pair = pairs[pi];
     for (size_t a = 0; a < pair.fluid_functions.size(); ++a) {
       const size_t f = static_cast<size_t>(pair.fluid_functions[a]);
-      const double* v = vs + 4 * f;
+      const double* v = vs + cc * f;
+      const double* p = ps + 3 * cc * f;
       double* col = block.column(pair.fluid_first + static_cast<int>(a)) + pair.solid_first;
       for (size_t i = 0; i < pair.solid_functions.size(); ++i) {
         const size_t b = static_cast<size_t>(pair.solid_functions[i]);
-        const double* p = psi + 4 * b;
-        double sum = c2 * (p[0] * v[0] + p[1] * v[1] + p[2] * v[2] + p[3] * v[3]);
+        const double* tb = taylor + cc * b;
+        double mass = 0;
+        for (int g = 0; g < count; ++g) mass += tb[g] * v[g];
+        double sum = c2 * mass;
         if (gradients_) {
-          const double* gs = gpsi + 3 * b;
-          const double* ch = chain + 3 * f;
-          sum += gs[0] * ch[0] + gs[1] * ch[1] + gs[2] * ch[2];
+          const double* ub = u + 3 * cc * b;
+          for (size_t g = 0; g < 3 * cc; ++g) sum += ub[g] * p[g];
         }
         col[i] += sum;
       }

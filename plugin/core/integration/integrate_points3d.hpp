@@ -100,13 +100,12 @@ class PointIntegrator3 : public PieceIntegrator3 {
   bool constant_chain(const MappedTet& mt) const {
     return constant_multiplier_gradients_ && !mt.affine && constant_fluid_gradients_;
   }
-  // A multiplier fitted at degree 0 or 1 (not the listings' product) and a quadratic map: about a point c,
-  // psi(xi) = psi(c) + sum_j (xi - c)_j dpsi/dxi_j and dX/ds(xi) = J(c) + sum_j (xi - c)_j G_j are affine in xi,
-  // so every term is a weighted sum along the points of a fluid function or of its gradient, with the four
-  // weights w, w (xi - c)_1, w (xi - c)_2, w (xi - c)_3 (add_weighted_sums, c a point of the batch): only the
-  // fluid's monomials are formed at the points.
+  // A multiplier fitted at degree m <= 2 (not the listings' product) and a quadratic map: about a point c of
+  // the batch, psi is a polynomial of degree m in r = xi - c and dX/ds(xi) = J(c) + sum_j r_j G_j is affine in r,
+  // so every term is a weighted sum along the points of a fluid function or of its gradient, with the weights
+  // w r^g, |g| <= m (add_weighted_sums): only the fluid's monomials are formed at the points.
   bool moment_chain(const MappedTet& mt) const {
-    return linear_multiplier_ && !mt.affine && mt.fitted_degree() == 2;
+    return polynomial_multiplier_ && !mt.affine && mt.fitted_degree() == 2;
   }
   void add_weighted_sums(const MappedTet& mt, int kf, int n, LocalBlock& block);
   // A quadratic map's dX/ds(xi + r) = J + sum_j r_j G_j about xi: J = dX/ds(xi) and G_j = d(dX/ds)/dxi_j, each
@@ -125,8 +124,8 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // sums each fluid function's weighted chain-rule gradients along the points (gradient_sums_: x, y, z).
   bool constant_multiplier_gradients_;
   bool constant_fluid_gradients_;  // a fluid basis fitted at degree 0 or 1
-  bool linear_multiplier_;  // fitted bases, the multiplier at degree 0 or 1, not the listings' product
-  std::vector<double> sum_weight_, value_sum_, gradient_sum_, multiplier_values_;  // add_weighted_sums'
+  bool polynomial_multiplier_;  // fitted bases, the multiplier at degree <= 2, not the listings' product
+  std::vector<double> sum_weight_, value_sum_, gradient_sum_;  // add_weighted_sums'
   std::vector<const double*> rows_;  // add_pairs': the pair's rows of values and gradients
   std::vector<double> products_;     // and their products
   // The gathered points carry dX/ds (jac_) where the map is not affine; on the reference side only where a
