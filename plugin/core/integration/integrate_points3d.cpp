@@ -255,6 +255,32 @@ inline Point3 linear_part(const double* j, Point3 v) {
           j[6] * v.x + j[7] * v.y + j[8] * v.z};
 }
 
+// A quadratic map over the triangle q0 + a q1 + b q2 of reference points, in a and b:
+// X = x + a u + b v + a^2 uu / 2 + a b uv + b^2 vv / 2, from X(q0), dX/dxi at xi = 0 (d0) and the hessian h.
+struct OverTriangle {
+  Point3 x, u, v, uu, uv, vv;
+  void set(Point3 x_q0, const Point3 (&d0)[3], const double (&h)[3][3][3], Point3 q0, Point3 q1, Point3 q2) {
+    // dX/dxi_i at q0, then its products with q1 and q2; h's bilinear forms of q1, q2
+    auto hessian = [&h](Point3 p, Point3 q) {
+      const double pp[3] = {p.x, p.y, p.z}, qq[3] = {q.x, q.y, q.z};
+      double out[3] = {0, 0, 0};
+      for (int a = 0; a < 3; ++a)
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) out[a] += h[a][i][j] * pp[i] * qq[j];
+      return Point3{out[0], out[1], out[2]};
+    };
+    x = x_q0;
+    u = (q1.x * d0[0] + q1.y * d0[1] + q1.z * d0[2]) + hessian(q1, q0);
+    v = (q2.x * d0[0] + q2.y * d0[1] + q2.z * d0[2]) + hessian(q2, q0);
+    uu = hessian(q1, q1);
+    uv = hessian(q1, q2);
+    vv = hessian(q2, q2);
+  }
+  Point3 at(double a, double b) const {
+    return x + ((a * u + b * v) + ((0.5 * a * a) * uu + (a * b) * uv + (0.5 * b * b) * vv));
+  }
+};
+
 // The band's axis for a face whose plane's preimage has gradient z (grad_xi (n . A)): of the solid's axes (axis,
 // in reference coordinates) the one with the largest |z . axis_a|, the first within 1e-9 of it (both sides of
 // the face, whose n differ by a positive factor and round-off, choose the same), signed so that n . A grows
@@ -362,12 +388,16 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
       const Point3 q0 = xi_corner[v0], q1 = xi_corner[v1] - q0, q2 = xi_corner[v2] - q0;
       const Point3 p0 = piece.v[v0], p1 = piece.v[v1] - p0, p2 = piece.v[v2] - p0;
       const double area = std::sqrt(dot(cross(q1, q2), cross(q1, q2))) / 2 * solid_det;
+      // X alone where dX/dxi is not read: a quadratic in the triangle's coordinates, and dX/dl affine, of slope H d
+      const bool alone = quadratic && !point_jacobians_;
+      OverTriangle x_over;
+      if (alone) x_over.set(reference_position(image, q0), D_corner, hessian, q0, q1, q2);
       for (const RulePoint& rp : face_rule) {
         const Point3 xi = q0 + (rp.xi.x * q1 + rp.xi.y * q2);
         const Point3 y = p0 + (rp.xi.x * p1 + rp.xi.y * p2);
         Point3 x0, D[3], dd;  // X, dX/dxi and dX/dl along the column
-        if (quadratic && !point_jacobians_) {  // X alone (dX/dxi is not read): dX/dl affine in xi, of slope H d
-          x0 = reference_position(image, xi);
+        if (alone) {
+          x0 = x_over.at(rp.xi.x, rp.xi.y);
           dd = dd_corner + (xi.x * hd[0] + xi.y * hd[1] + xi.z * hd[2]);
         } else {
           reference_value(image, xi, x0, D);
