@@ -176,6 +176,42 @@ inline void PointIntegrator3::add_reference_point(Point3 eta, Point3 xi, double 
   weight_.push_back(weight);
 }
 
+namespace {
+
+// A quadratic map over the simplex q0 + sum_k a_k q_k (k < dims, 2 or 3) of reference points, in the a_k:
+// X = x + sum_k a_k lin_k + sum_(k <= m) a_k a_m quad_km (the diagonal terms halved), from X(q0), dX/dxi at
+// xi = 0 (d0) and the hessian h: one evaluation of the map, then a few vector products per point.
+struct OverSimplex {
+  int dims = 0;
+  Point3 x, lin[3], quad[3][3];
+  void set(Point3 x_q0, const Point3 (&d0)[3], const double (&h)[3][3][3], Point3 q0, const Point3* q, int n) {
+    auto hessian = [&h](Point3 p, Point3 r) {  // h's bilinear form, per component
+      const double pp[3] = {p.x, p.y, p.z}, rr[3] = {r.x, r.y, r.z};
+      double out[3] = {0, 0, 0};
+      for (int a = 0; a < 3; ++a)
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) out[a] += h[a][i][j] * pp[i] * rr[j];
+      return Point3{out[0], out[1], out[2]};
+    };
+    dims = n;
+    x = x_q0;
+    for (int k = 0; k < n; ++k) {  // dX/dxi at q0 times q_k
+      lin[k] = (q[k].x * d0[0] + q[k].y * d0[1] + q[k].z * d0[2]) + hessian(q[k], q0);
+      for (int m = k; m < n; ++m) quad[k][m] = (m == k ? 0.5 : 1.0) * hessian(q[k], q[m]);
+    }
+  }
+  Point3 at(const double* a) const {
+    Point3 linear, quadratic;
+    for (int k = 0; k < dims; ++k) {
+      linear = linear + a[k] * lin[k];
+      for (int m = k; m < dims; ++m) quadratic = quadratic + (a[k] * a[m]) * quad[k][m];
+    }
+    return x + (linear + quadratic);
+  }
+};
+
+}  // namespace
+
 double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int kf, const Piece3& piece) {
   const MappedTet& mt = image.tetrahedron;
   const auto& rule = tetrahedron_rule(image.degree);
@@ -188,15 +224,24 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
   // dX/ds at each point where the gradient terms read it there (not under moment_chain: add_weighted_sums forms
   // it from the points' weights and xi, dX/dxi being affine in xi)
   point_jacobians_ = gradients_ && !moment_chain(mt);
+  // X alone under a quadratic map: over each of the piece's tetrahedra from its Taylor terms (OverSimplex)
+  double hessian[3][3][3];
+  Point3 x_corner, d_corner[3];
+  const bool over = !point_jacobians_ && rule.size() > 10 && mt.reference_hessian(hessian);
+  if (over) reference_value(image, Point3(), x_corner, d_corner);
+  OverSimplex x_over;
   double volume = 0;
   piece.for_each_tetrahedron_index([&](int i0, int i1, int i2, int i3) {
     volume += std::fabs(volume6(piece.v[i0], piece.v[i1], piece.v[i2], piece.v[i3])) / 6;
     const Point3 xt[4] = {xi_corner[i0], xi_corner[i1], xi_corner[i2], xi_corner[i3]};
     const double measure = std::fabs(volume6(xt[0], xt[1], xt[2], xt[3])) / 6 * solid_det;
+    const Point3 edges[3] = {xt[1] - xt[0], xt[2] - xt[0], xt[3] - xt[0]};
+    if (over) x_over.set(reference_position(image, xt[0]), d_corner, hessian, xt[0], edges, 3);
     for (const RulePoint3& rp : rule) {
       const Point3 xi = from_reference(xt, rp.xi);
       if (!point_jacobians_) {
-        add_reference_point(image, kf, xi, reference_position(image, xi), measure * rp.weight);
+        const double abc[3] = {rp.xi.x, rp.xi.y, rp.xi.z};
+        add_reference_point(image, kf, xi, over ? x_over.at(abc) : reference_position(image, xi), measure * rp.weight);
         continue;
       }
       Point3 x, d[3];
@@ -254,32 +299,6 @@ inline Point3 linear_part(const double* j, Point3 v) {
   return {j[0] * v.x + j[1] * v.y + j[2] * v.z, j[3] * v.x + j[4] * v.y + j[5] * v.z,
           j[6] * v.x + j[7] * v.y + j[8] * v.z};
 }
-
-// A quadratic map over the triangle q0 + a q1 + b q2 of reference points, in a and b:
-// X = x + a u + b v + a^2 uu / 2 + a b uv + b^2 vv / 2, from X(q0), dX/dxi at xi = 0 (d0) and the hessian h.
-struct OverTriangle {
-  Point3 x, u, v, uu, uv, vv;
-  void set(Point3 x_q0, const Point3 (&d0)[3], const double (&h)[3][3][3], Point3 q0, Point3 q1, Point3 q2) {
-    // dX/dxi_i at q0, then its products with q1 and q2; h's bilinear forms of q1, q2
-    auto hessian = [&h](Point3 p, Point3 q) {
-      const double pp[3] = {p.x, p.y, p.z}, qq[3] = {q.x, q.y, q.z};
-      double out[3] = {0, 0, 0};
-      for (int a = 0; a < 3; ++a)
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) out[a] += h[a][i][j] * pp[i] * qq[j];
-      return Point3{out[0], out[1], out[2]};
-    };
-    x = x_q0;
-    u = (q1.x * d0[0] + q1.y * d0[1] + q1.z * d0[2]) + hessian(q1, q0);
-    v = (q2.x * d0[0] + q2.y * d0[1] + q2.z * d0[2]) + hessian(q2, q0);
-    uu = hessian(q1, q1);
-    uv = hessian(q1, q2);
-    vv = hessian(q2, q2);
-  }
-  Point3 at(double a, double b) const {
-    return x + ((a * u + b * v) + ((0.5 * a * a) * uu + (a * b) * uv + (0.5 * b * b) * vv));
-  }
-};
 
 // The band's axis for a face whose plane's preimage has gradient z (grad_xi (n . A)): of the solid's axes (axis,
 // in reference coordinates) the one with the largest |z . axis_a|, the first within 1e-9 of it (both sides of
@@ -390,14 +409,16 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
       const double area = std::sqrt(dot(cross(q1, q2), cross(q1, q2))) / 2 * solid_det;
       // X alone where dX/dxi is not read: a quadratic in the triangle's coordinates, and dX/dl affine, of slope H d
       const bool alone = quadratic && !point_jacobians_;
-      OverTriangle x_over;
-      if (alone) x_over.set(reference_position(image, q0), D_corner, hessian, q0, q1, q2);
+      OverSimplex x_over;
+      const Point3 edges[2] = {q1, q2};
+      if (alone) x_over.set(reference_position(image, q0), D_corner, hessian, q0, edges, 2);
       for (const RulePoint& rp : face_rule) {
         const Point3 xi = q0 + (rp.xi.x * q1 + rp.xi.y * q2);
         const Point3 y = p0 + (rp.xi.x * p1 + rp.xi.y * p2);
         Point3 x0, D[3], dd;  // X, dX/dxi and dX/dl along the column
         if (alone) {
-          x0 = x_over.at(rp.xi.x, rp.xi.y);
+          const double ab[2] = {rp.xi.x, rp.xi.y};
+          x0 = x_over.at(ab);
           dd = dd_corner + (xi.x * hd[0] + xi.y * hd[1] + xi.z * hd[2]);
         } else {
           reference_value(image, xi, x0, D);
