@@ -15,17 +15,26 @@ inline double weighted_sum(const double* w, const double* row, int n) {
 
 // out[a * nb + b] = sum_p x[a][p] y[b][p] for a < na, b < nb: the products of two sets of rows along the
 // points, in blocks of 2 x 4 rows whose eight sums run side by side (each point's six values loaded once for
-// eight products, where a sum at a time loads two for one), one running sum each; the rows left over by the
-// blocks as weighted_sum.
+// eight products, where a sum at a time loads two for one), each sum in two lanes (even and odd points: GCC
+// and Clang vector extensions, one SSE2 register on x86-64) added at the end; the rows left over by the blocks
+// as weighted_sum. The order of the additions is fixed: the same sums bit for bit on every run.
 inline void row_products(const double* const* x, int na, const double* const* y, int nb, int n, double* out) {
+  typedef double Pair __attribute__((vector_size(16)));
+  auto load = [](const double* p) {
+    Pair v;
+    __builtin_memcpy(&v, p, sizeof v);
+    return v;
+  };
   int a = 0;
   for (; a + 2 <= na; a += 2) {
     int b = 0;
     for (; b + 4 <= nb; b += 4) {
       const double *x0 = x[a], *x1 = x[a + 1], *y0 = y[b], *y1 = y[b + 1], *y2 = y[b + 2], *y3 = y[b + 3];
-      double s00 = 0, s01 = 0, s02 = 0, s03 = 0, s10 = 0, s11 = 0, s12 = 0, s13 = 0;
-      for (int p = 0; p < n; ++p) {
-        const double u = x0[p], v = x1[p], c0 = y0[p], c1 = y1[p], c2 = y2[p], c3 = y3[p];
+      Pair s00 = {0, 0}, s01 = s00, s02 = s00, s03 = s00, s10 = s00, s11 = s00, s12 = s00, s13 = s00;
+      int p = 0;
+      for (; p + 2 <= n; p += 2) {
+        const Pair u = load(x0 + p), v = load(x1 + p), c0 = load(y0 + p), c1 = load(y1 + p), c2 = load(y2 + p),
+                   c3 = load(y3 + p);
         s00 += u * c0;
         s01 += u * c1;
         s02 += u * c2;
@@ -35,10 +44,21 @@ inline void row_products(const double* const* x, int na, const double* const* y,
         s12 += v * c2;
         s13 += v * c3;
       }
+      double t[8] = {s00[0] + s00[1], s01[0] + s01[1], s02[0] + s02[1], s03[0] + s03[1],
+                     s10[0] + s10[1], s11[0] + s11[1], s12[0] + s12[1], s13[0] + s13[1]};
+      if (p < n) {  // the odd point left
+        const double u = x0[p], v = x1[p], c[4] = {y0[p], y1[p], y2[p], y3[p]};
+        for (int j = 0; j < 4; ++j) {
+          t[j] += u * c[j];
+          t[4 + j] += v * c[j];
+        }
+      }
       double* o0 = out + static_cast<long>(a) * nb + b;
       double* o1 = o0 + nb;
-      o0[0] = s00, o0[1] = s01, o0[2] = s02, o0[3] = s03;
-      o1[0] = s10, o1[1] = s11, o1[2] = s12, o1[3] = s13;
+      for (int j = 0; j < 4; ++j) {
+        o0[j] = t[j];
+        o1[j] = t[4 + j];
+      }
     }
     for (; b < nb; ++b) {
       out[static_cast<long>(a) * nb + b] = weighted_sum(x[a], y[b], n);
