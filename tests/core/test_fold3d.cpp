@@ -15,6 +15,8 @@
 #include "map/element_map3d.hpp"
 #include "map/field_map3d.hpp"
 #include "map/fold3d.hpp"
+#include "map/pull_back3d.hpp"
+#include "fe/matrix_inverse.hpp"
 #include "fe/rules.hpp"
 #include "support3d.hpp"
 
@@ -486,6 +488,78 @@ TEST(TetrahedronMap, CubicMapCouplingOfPolynomialDataIsExact) {
       const CsrMatrix b = couple(fluid, d.space, solid, multiplier, map, c1, c2, &report);
       EXPECT_NEAR(bilinear(b, lam, u), exact, 1e-13 * std::fabs(exact))
           << "fluid degree " << (&d.space == &fluid_p1 ? 1 : 2) << ", c1 " << c1 << ": " << report.summary();
+    }
+  }
+}
+
+// A P1b map on a general tetrahedron, X(s) = A s + t + beta q(xi(s)), q = xi1 xi2 xi3 (1 - xi1 - xi2 - xi3): the fit
+// is recognised as an affine map plus a bubble (bubble_form), whose parts give X back at random points against the
+// formula, and the pull-back (the bubble's scalar predictor, then Newton) returns the reference point the test
+// mapped forward, with X and dX/ds there. A map with one more term (1e-3 x^2) is not of that form and pulls back
+// all the same (Newton alone).
+TEST(TetrahedronMap, BubbleMapsPullBackThroughTheirBubbleForm) {
+  const Point3 v[4] = {{0.5, -0.3, 0.2}, {1.1, -0.2, 0.25}, {0.6, 0.4, 0.1}, {0.55, -0.1, 0.9}};
+  double e_inv[3][3];
+  inverse_of_columns(v[1] - v[0], v[2] - v[0], v[3] - v[0], e_inv);
+  const double a[3][3] = {{0.9, -0.3, 0.1}, {0.35, 0.95, -0.2}, {-0.1, 0.15, 1.05}};
+  const Point3 beta{0.12, -0.2, 0.08}, shift{0.3, -0.1, 0.2};
+  for (double extra : {0.0, 1e-3}) {
+    const Formula formula = [&](Point3 s, Point3& x, double j[3][3]) {
+      const Point3 d = s - v[0];
+      double xi[3];
+      for (int i = 0; i < 3; ++i) xi[i] = e_inv[i][0] * d.x + e_inv[i][1] * d.y + e_inv[i][2] * d.z;
+      const double l0 = 1 - xi[0] - xi[1] - xi[2], q = xi[0] * xi[1] * xi[2] * l0;
+      const double dq[3] = {xi[1] * xi[2] * (l0 - xi[0]), xi[0] * xi[2] * (l0 - xi[1]),
+                            xi[0] * xi[1] * (l0 - xi[2])};
+      const double b[3] = {beta.x, beta.y, beta.z}, t[3] = {shift.x, shift.y, shift.z}, ss[3] = {s.x, s.y, s.z};
+      double out[3];
+      for (int r = 0; r < 3; ++r) {
+        out[r] = t[r] + a[r][0] * s.x + a[r][1] * s.y + a[r][2] * s.z + b[r] * q;
+        if (r == 0) out[r] += extra * s.x * s.x;
+        for (int c = 0; c < 3; ++c) {  // dq/ds_c = sum_i dq/dxi_i dxi_i/ds_c
+          const double dqds = dq[0] * e_inv[0][c] + dq[1] * e_inv[1][c] + dq[2] * e_inv[2][c];
+          j[r][c] = a[r][c] + b[r] * dqds + (r == 0 && c == 0 ? 2 * extra * ss[0] : 0);
+        }
+      }
+      x = {out[0], out[1], out[2]};
+    };
+    Mesh3 solid;
+    solid.vertices.assign(v, v + 4);
+    solid.tetrahedra = {{0, 1, 2, 3}};
+    solid.build_adjacency();
+    const FormulaMap3 map(solid, formula, 4);
+    MappedTet mt;
+    mt.prepare(solid, map, 0);
+    EXPECT_EQ(mt.bubble_form(), extra == 0);
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int n = 0; n < 200; ++n) {
+      Point3 xi{u(rng), u(rng), u(rng)};
+      if (xi.x + xi.y + xi.z > 1) xi = {xi.x / 3, xi.y / 3, xi.z / 3};
+      Point3 y;
+      double j[3][3];
+      formula(from_reference(v, xi), y, j);
+      if (extra == 0) {  // X(0) + D xi + beta q(xi), and D v = beta
+        const double q = xi.x * xi.y * xi.z * (1 - xi.x - xi.y - xi.z);
+        const Point3 parts = mt.origin() + (xi.x * mt.bubble_linear(0) + xi.y * mt.bubble_linear(1) +
+                                            xi.z * mt.bubble_linear(2)) + q * mt.bubble_beta();
+        EXPECT_NEAR(parts.x, y.x, 1e-14);
+        EXPECT_NEAR(parts.y, y.y, 1e-14);
+        EXPECT_NEAR(parts.z, y.z, 1e-14);
+        const Point3 dir = mt.bubble_direction();
+        const Point3 dv = dir.x * mt.bubble_linear(0) + dir.y * mt.bubble_linear(1) + dir.z * mt.bubble_linear(2);
+        EXPECT_NEAR(dv.x, mt.bubble_beta().x, 1e-15);
+        EXPECT_NEAR(dv.y, mt.bubble_beta().y, 1e-15);
+        EXPECT_NEAR(dv.z, mt.bubble_beta().z, 1e-15);
+      }
+      MapValue3 value;
+      const Point3 back = pull_back(mt, y, mt.affine_reference(y), value);
+      EXPECT_NEAR(back.x, xi.x, 1e-13) << extra;
+      EXPECT_NEAR(back.y, xi.y, 1e-13) << extra;
+      EXPECT_NEAR(back.z, xi.z, 1e-13) << extra;
+      EXPECT_NEAR(value.x.x, y.x, 1e-13);
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(value.jac[r][c], j[r][c], 1e-12) << r << c;
     }
   }
 }

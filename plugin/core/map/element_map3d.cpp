@@ -12,14 +12,16 @@ namespace dlmfsi {
 
 namespace {
 
-// TetrahedronMap::polynomial's sums for any degree (nm monomials).
-void sum_polynomial(const double (*c)[monomial_count3(TetrahedronMap::kMaxDegree)], int degree, int nm,
-                    Point3 xi, Point3& x, Point3 d[3], int first) {
+// TetrahedronMap::polynomial's sums for any degree, over the monomials listed in terms (nm of them, ascending:
+// those whose coefficients are not all zero; a zero coefficient would add zero).
+void sum_polynomial(const double (*c)[monomial_count3(TetrahedronMap::kMaxDegree)], int degree, const int* terms,
+                    int nm, Point3 xi, Point3& x, Point3 d[3], int first) {
   double v[monomial_count3(TetrahedronMap::kMaxDegree)];
   monomial_values3(degree, xi, v);
   double s[3] = {0, 0, 0}, g[3][3] = {};
   const MonomialDerivative3* derivative = monomial_derivatives3(degree).data();
-  for (int m = 0; m < nm; ++m) {
+  for (int t = 0; t < nm; ++t) {
+    const int m = terms[t];
     if (m >= first)
       for (int a = 0; a < 3; ++a) s[a] += c[a][m] * v[m];
     for (int i = 0; i < 3; ++i) {
@@ -79,11 +81,10 @@ void sum_quadratic(const double (*c)[monomial_count3(TetrahedronMap::kMaxDegree)
 }  // namespace
 
 void TetrahedronMap::polynomial(Point3 xi, Point3& x, Point3 d[3], int first) const {
-  const int nm = monomial_count3(degree_);
   if (degree_ == 2)  // P23d maps, whose Newton pull-backs call this at every point of a curved piece
     sum_quadratic(c_, xi, x, d, first);
   else
-    sum_polynomial(c_, degree_, nm, xi, x, d, first);
+    sum_polynomial(c_, degree_, terms_, term_count_, xi, x, d, first);
 }
 
 Point3 TetrahedronMap::polynomial_value(Point3 xi, int first) const {
@@ -95,10 +96,10 @@ Point3 TetrahedronMap::polynomial_value(Point3 xi, int first) const {
   }
   double v[monomial_count3(kMaxDegree)];
   monomial_values3(degree_, xi, v);
-  const int nm = monomial_count3(degree_);
   for (int a = 0; a < 3; ++a) {
     double sum = 0;
-    for (int m = first; m < nm; ++m) sum += c_[a][m] * v[m];
+    for (int t = 0; t < term_count_; ++t)
+      if (terms_[t] >= first) sum += c_[a][terms_[t]] * v[terms_[t]];
     s[a] = sum;
   }
   return {s[0], s[1], s[2]};
@@ -192,6 +193,36 @@ void TetrahedronMap::fit(const Mesh3& solid_mesh, const SolidMap3& map, int kk) 
       for (int m = 0; m < n; ++m)
         if (!std::isfinite(c_[a][m])) throw Error("the map is NaN or Inf in " + name());
   }
+  term_count_ = 0;
+  for (int m = 0; m < (degree_ >= 1 ? monomial_count3(degree_) : 0); ++m)
+    if (c_[0][m] != 0 || c_[1][m] != 0 || c_[2][m] != 0) terms_[term_count_++] = m;
+  detect_bubble();
+}
+
+void TetrahedronMap::detect_bubble() {
+  bubble_ = false;
+  if (degree_ < 4) return;
+  const int n = monomial_count3(degree_), m111 = monomial_index3(1, 1, 1);
+  const int minus[3] = {monomial_index3(2, 1, 1), monomial_index3(1, 2, 1), monomial_index3(1, 1, 2)};
+  double beta[3];
+  bool any = false;
+  for (int a = 0; a < 3; ++a) {
+    const double* c = c_[a];
+    beta[a] = c[m111];
+    const double tolerance = 1e-6 * (std::fabs(c[1]) + std::fabs(c[2]) + std::fabs(c[3]) + std::fabs(beta[a]));
+    for (int m = 4; m < n; ++m) {
+      const double expected = m == m111 ? beta[a] : (m == minus[0] || m == minus[1] || m == minus[2]) ? -beta[a] : 0;
+      if (!(std::fabs(c[m] - expected) <= tolerance)) return;
+    }
+    any = any || beta[a] != 0;
+  }
+  if (!any) return;  // affine: the affine path
+  const Point3 d1 = bubble_linear(0), d2 = bubble_linear(1), d3 = bubble_linear(2);
+  if (!(dot(d1, cross(d2, d3)) > 0)) return;  // Newton's path reports what is wrong
+  inverse_of_columns(d1, d2, d3, bubble_inv_);
+  bubble_beta_ = {beta[0], beta[1], beta[2]};
+  bubble_v_ = bubble_linear_inverse(bubble_beta_);
+  bubble_ = true;
 }
 
 }  // namespace dlmfsi

@@ -40,6 +40,23 @@ class TetrahedronMap {
   // X at xi alone (the same value as reference_derivatives' x, bit for bit).
   Point3 position(Point3 xi) const;
 
+  // A P1b map, nearly: X(xi) = X(0) + sum_i xi_i D_i + beta q(xi), q = xi1 xi2 xi3 (1 - xi1 - xi2 - xi3) (an affine
+  // map plus a bubble), the fitted coefficients of every other monomial of degree >= 2 and the ratios of those of
+  // q's four monomials (1 : -1 : -1 : -1) so to 1e-6 of the linear ones' size (fit's check; the basis's own fit
+  // leaves them 1e-13 off): a predictor for Newton's pull-back (pull_back3d.hpp), not the map.
+  bool bubble_form() const { return bubble_; }
+  // With bubble_form(): D^-1 x (x relative to origin()) and v = D^-1 beta, so that X(xi) = y exactly where
+  // xi + v q(xi) = D^-1 (y - X(0)).
+  Point3 bubble_linear_inverse(Point3 x) const {
+    const double(&m)[3][3] = bubble_inv_;
+    return {m[0][0] * x.x + m[0][1] * x.y + m[0][2] * x.z, m[1][0] * x.x + m[1][1] * x.y + m[1][2] * x.z,
+            m[2][0] * x.x + m[2][1] * x.y + m[2][2] * x.z};
+  }
+  Point3 bubble_direction() const { return bubble_v_; }
+  Point3 bubble_beta() const { return bubble_beta_; }
+  // D_i = dX/dxi_i of the affine part.
+  Point3 bubble_linear(int i) const { return {c_[0][1 + i], c_[1][1 + i], c_[2][1 + i]}; }
+
   // "solid tetrahedron k", for error messages.
   std::string name() const { return "solid tetrahedron " + std::to_string(k); }
   // X at reference corner 0, the fitted polynomial's constant term (fitted_degree() >= 1).
@@ -62,6 +79,14 @@ class TetrahedronMap {
   // its value alone, summed in the same order
   Point3 polynomial_value(Point3 xi, int first) const;
   double inv_[3][3];  // d xi / d s
+  // The monomials whose coefficients are not all zero, ascending (a P1b map's: 8 of 35), which the sums read.
+  int terms_[monomial_count3(kMaxDegree)] = {};
+  int term_count_ = 0;
+  // bubble_form()'s: whether, D^-1, D^-1 beta and beta
+  void detect_bubble();
+  bool bubble_ = false;
+  double bubble_inv_[3][3] = {};
+  Point3 bubble_v_, bubble_beta_;
 };
 
 }  // namespace dlmfsi

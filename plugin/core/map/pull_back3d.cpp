@@ -7,12 +7,40 @@
 
 namespace dlmfsi {
 
+namespace {
+
+// A P1b map (bubble_form): X(xi) ~ o + D xi + beta q(xi). With v = D^-1 beta and xi0 = D^-1 (y - o), that is y
+// where xi = xi0 - s v and s = q(xi0 - s v): a scalar equation g(s) = s - q(xi0 - s v) = 0, whose slope
+// g' = 1 + grad q . v = det dX/dxi / det D is positive wherever the map does not fold. Newton on s, from the
+// guess's s: each step evaluates q and its gradient at one point (Newton on X evaluates the degree-4 polynomial
+// and its jacobian). Returns the guess itself where a slope is not positive or it does not settle: Newton on X
+// then decides, as without this predictor.
+Point3 bubble_predictor(const MappedTet& mt, Point3 y, Point3 guess) {
+  const Point3 v = mt.bubble_direction(), xi0 = mt.bubble_linear_inverse(y - mt.origin());
+  const double v1 = std::fabs(v.x) + std::fabs(v.y) + std::fabs(v.z);
+  double s = dot(xi0 - guess, v) / dot(v, v);
+  for (int it = 0; it < 20; ++it) {
+    const Point3 p = xi0 - s * v;
+    const double l0 = 1 - p.x - p.y - p.z;
+    const Point3 gradient{p.y * p.z * (l0 - p.x), p.x * p.z * (l0 - p.y), p.x * p.y * (l0 - p.z)};
+    const double slope = 1 + dot(gradient, v);
+    if (!(slope > 0)) return guess;
+    const double step = (s - p.x * p.y * p.z * l0) / slope;
+    s -= step;
+    if (std::fabs(step) * v1 < 1e-14) return xi0 - s * v;
+  }
+  return guess;
+}
+
+}  // namespace
+
 Point3 pull_back(const MappedTet& mt, Point3 y, Point3 xi, MapValue3& value) {
   if (mt.affine) {
     value = mt.affine_value;
     value.x = y;
     return mt.affine_reference(y);
   }
+  if (mt.bubble_form()) xi = bubble_predictor(mt, y, xi);
   // Newton on X(xi) = y with dX/dxi = [d1 d2 d3]; its determinant has the sign of det dX/ds. A fitted map's
   // residual is (y - o) - (X(xi) - o), o = X(0): each difference to the relative precision of the image's
   // size, so that a small tetrahedron far from 0 converges as near 0. x below is X - o.
