@@ -79,7 +79,7 @@ void PointIntegrator3::add_gathered(const MappedTet& mt, int kf, LocalBlock& blo
   const int n = static_cast<int>(eta_.size());
   if (n == 0) return;
   counts_.points += n;
-  if (moment_chain(mt)) {
+  if (weighted_sum_terms(mt)) {
     add_weighted_sums(mt, kf, n, block);
     return;
   }
@@ -221,9 +221,9 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
   // ds = det [solid edges] dxi
   const double solid_det = volume6(mt.solid[0], mt.solid[1], mt.solid[2], mt.solid[3]);
   clear_points();
-  // dX/ds at each point where the gradient terms read it there (not under moment_chain: add_weighted_sums forms
+  // dX/ds at each point where the gradient terms read it there (not under weighted_sum_terms: add_weighted_sums forms
   // it from the points' weights and xi, dX/dxi being affine in xi)
-  point_jacobians_ = gradients_ && !moment_chain(mt);
+  point_jacobians_ = gradients_ && !weighted_sum_terms(mt);
   // X alone under a quadratic map: over each of the piece's tetrahedra from its Taylor terms (OverSimplex)
   double hessian[3][3][3];
   Point3 x_corner, d_corner[3];
@@ -597,11 +597,11 @@ void PointIntegrator3::add_weighted_sums(const MappedTet& mt, int kf, int n, Loc
   const int degree = multiplier.degree(), count = monomial_count3(degree);
   const size_t nf = static_cast<size_t>(fluid_functions_), nn = static_cast<size_t>(n), cc = count;
   const size_t ns = multiplier.functions().size();
-  if (sum_weight_.size() < cc * nn) sum_weight_.resize(cc * nn);
-  value_sum_.resize(cc * (nf + ns));
-  gradient_sum_.resize(3 * cc * (nf + ns));
+  if (sum_weights_.size() < cc * nn) sum_weights_.resize(cc * nn);
+  value_terms_.resize(cc * (nf + ns));
+  gradient_terms_.resize(3 * cc * (nf + ns));
   const Point3 c = xi_[0];
-  double* w = sum_weight_.data();
+  double* w = sum_weights_.data();
   // W_0 = w, W of the degree-1 monomials w r_i, each further one its parent's times one coordinate of r
   for (int q = 0; q < n; ++q) w[q] = weight_[q];
   if (degree > 0)
@@ -621,9 +621,9 @@ void PointIntegrator3::add_weighted_sums(const MappedTet& mt, int kf, int n, Loc
       to[q] = from[q] * (axis == 0 ? r.x : axis == 1 ? r.y : r.z);
     }
   }
-  double* vs = value_sum_.data();     // V_g of fluid function f at count f + g
+  double* vs = value_terms_.data();     // V_g of fluid function f at count f + g
   double* taylor = vs + cc * nf;      // A_g of multiplier function b at count b + g
-  double* ps = gradient_sum_.data();  // P_g of f at 3 (count f + g)
+  double* ps = gradient_terms_.data();  // P_g of f at 3 (count f + g)
   double* u = ps + 3 * cc * nf;       // c1 u_g of b at 3 (count b + g)
   fluid.weighted_sums(kf, eta_.data(), w, count, n, vs, gradients_ ? ps : nullptr);
   taylor_coefficients(multiplier.coefficients(mt.k), degree, ns, c, taylor);

@@ -7,7 +7,8 @@
 // or with the listings' reversed product (three pairs, the pair index being the vector component)
 //   grad psi : G = sum_{a,b} d_b psi^(a) sum_c dX_a/ds_c d_b phi^(c).
 // On elements of the shared fits, a pair that repeats an earlier pair's functions (ComponentPairs) copies
-// its sums.
+// its sums. Under a quadratic map with a multiplier of degree <= 2 the same sums are regrouped as weighted sums
+// of the fluid's values and gradients (weighted_sum_terms), and neither basis is evaluated point by point.
 #pragma once
 #include <array>
 #include <vector>
@@ -93,9 +94,9 @@ class PointIntegrator3 : public PieceIntegrator3 {
   bool deferred_chain(const MappedTet& mt) const {
     return constant_multiplier_gradients_ && mt.affine && integrand_.fluid.fitted();
   }
-  // Constant multiplier gradients, a map that is neither affine nor quadratic (those go to moment_chain) and a
-  // fluid basis fitted at degree 0 or 1: both gradients are constant, so sum_q w_q grad psi . (J_q^T grad phi) =
-  // grad psi . (sum_q w_q J_q)^T grad phi: weigh sums the weighted jacobians once for all fluid functions
+  // Constant multiplier gradients, a map that is neither affine nor quadratic (those go to weighted_sum_terms)
+  // and a fluid basis fitted at degree 0 or 1: both gradients are constant, so sum_q w_q grad psi . (J_q^T grad
+  // phi) = grad psi . (sum_q w_q J_q)^T grad phi: weigh sums the weighted jacobians once for all fluid functions
   // (PointValues3::evaluate_constant_gradients).
   bool constant_chain(const MappedTet& mt) const {
     return constant_multiplier_gradients_ && !mt.affine && constant_fluid_gradients_;
@@ -104,7 +105,7 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // the batch, psi is a polynomial of degree m in r = xi - c and dX/ds(xi) = J(c) + sum_j r_j G_j is affine in r,
   // so every term is a weighted sum along the points of a fluid function or of its gradient, with the weights
   // w r^g, |g| <= m (add_weighted_sums): only the fluid's monomials are formed at the points.
-  bool moment_chain(const MappedTet& mt) const {
+  bool weighted_sum_terms(const MappedTet& mt) const {
     return polynomial_multiplier_ && !mt.affine && mt.fitted_degree() == 2;
   }
   void add_weighted_sums(const MappedTet& mt, int kf, int n, LocalBlock& block);
@@ -125,11 +126,12 @@ class PointIntegrator3 : public PieceIntegrator3 {
   bool constant_multiplier_gradients_;
   bool constant_fluid_gradients_;  // a fluid basis fitted at degree 0 or 1
   bool polynomial_multiplier_;  // fitted bases, the multiplier at degree <= 2, not the listings' product
-  std::vector<double> sum_weight_, value_sum_, gradient_sum_;  // add_weighted_sums'
+  // add_weighted_sums': the weights w r^g along the points; V_g and A_g; P_g and u_g
+  std::vector<double> sum_weights_, value_terms_, gradient_terms_;
   std::vector<const double*> rows_;  // add_pairs': the pair's rows of values and gradients
   std::vector<double> products_;     // and their products
   // The gathered points carry dX/ds (jac_) where the map is not affine; on the reference side only where a
-  // gradient term reads it at each point (not under moment_chain: add_weighted_sums).
+  // gradient term reads it at each point (not under weighted_sum_terms: add_weighted_sums).
   bool point_jacobians_ = true;
   std::vector<double> gradient_sums_;
   // The gathered points, as PointData's fields (jac_ as point_jacobians_ says).
