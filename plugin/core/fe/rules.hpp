@@ -14,8 +14,9 @@ struct RulePoint {
 
 // A rule exact for polynomials of total degree <= degree (0 <= degree <= 60).
 // Degrees 1, 2, 4, 5, 6 and 8 use the classical 1-, 3-, 6-, 7-, 12- and 16-point rules (centroid,
-// Strang-Fix, Dunavant, Radon, Dunavant, Dunavant); the others a collapsed (Duffy) product of
-// Gauss-Legendre rules,
+// Strang-Fix, Dunavant, Radon, Dunavant, Dunavant); degrees 10, 12, 14, 16, 18 and 20 (and the odd ones below
+// them) fully symmetric rules of 25, 33, 42, 55, 67 and 79 points solved for this project; the others a
+// collapsed (Duffy) product of Gauss-Legendre rules,
 //   int_T f = int_0^1 int_0^1 f(u, (1-u) v) (1-u) dv du,
 // with ceil((degree+2)/2) points in u and ceil((degree+1)/2) in v. All weights are positive.
 const std::vector<RulePoint>& triangle_rule(int degree);
