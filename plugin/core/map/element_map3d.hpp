@@ -41,11 +41,12 @@ class TetrahedronMap {
   Point3 position(Point3 xi) const;
 
   // A P1b map, nearly: X(xi) = X(0) + sum_i xi_i D_i + beta q(xi), q = xi1 xi2 xi3 (1 - xi1 - xi2 - xi3) (an affine
-  // map plus a bubble), the fitted coefficients of every other monomial of degree >= 2 and the ratios of those of
-  // q's four monomials (1 : -1 : -1 : -1) so to 1e-6 of the linear ones' size (fit's check; the basis's own fit
-  // leaves them 1e-13 off): a predictor for Newton's pull-back (pull_back3d.hpp), not the map.
+  // map plus a bubble): the fitted coefficients of every other monomial of degree >= 2 are zero, and those of q's
+  // four monomials in the ratio 1 : -1 : -1 : -1, each within 1e-6 of the linear coefficients' size (fit's check;
+  // the basis's own fit leaves them about 1e-13 off). A predictor for Newton's pull-back (pull_back3d.hpp), not
+  // the map.
   bool bubble_form() const { return bubble_; }
-  // With bubble_form(): D^-1 x (x relative to origin()) and v = D^-1 beta, so that X(xi) = y exactly where
+  // With bubble_form(): D^-1 x (x relative to origin()) and v = D^-1 beta, so that the form is y where
   // xi + v q(xi) = D^-1 (y - X(0)).
   Point3 bubble_linear_inverse(Point3 x) const {
     const double(&m)[3][3] = bubble_inv_;
