@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "fe/rules.hpp"
 
@@ -32,43 +33,62 @@ TEST(Rules3d, GaussJacobiIntegratesItsWeightsMoments) {
   EXPECT_LE(worst, 1e-13);
 }
 
-TEST(Rules3d, ExactForMonomialsUpToTheirDegree) {
-  for (int d = 0; d <= 16; ++d) {
-    const auto& rule = tetrahedron_rule(d);
-    double wsum = 0;
-    for (const auto& q : rule) {
-      EXPECT_GT(q.weight, 0);
-      EXPECT_GE(std::min({q.xi.x, q.xi.y, q.xi.z}), 0);
-      EXPECT_LE(q.xi.x + q.xi.y + q.xi.z, 1 + 1e-15);
-      wsum += q.weight;
+namespace {
+
+void expect_exact_to_degree(const std::vector<RulePoint3>& rule, int d, const char* which) {
+  double wsum = 0;
+  for (const auto& q : rule) {
+    EXPECT_GT(q.weight, 0);
+    EXPECT_GE(std::min({q.xi.x, q.xi.y, q.xi.z}), 0);
+    EXPECT_LE(q.xi.x + q.xi.y + q.xi.z, 1 + 1e-15);
+    wsum += q.weight;
+  }
+  EXPECT_NEAR(wsum, 1, 1e-14);
+  double worst = 0;
+  for (int a = 0; a <= d; ++a)
+    for (int b = 0; a + b <= d; ++b)
+      for (int c = 0; a + b + c <= d; ++c) {
+        double s = 0;
+        for (const auto& q : rule) s += q.weight * std::pow(q.xi.x, a) * std::pow(q.xi.y, b) * std::pow(q.xi.z, c);
+        const double exact = monomial_integral(a, b, c);
+        worst = std::max(worst, std::fabs(s / 6 - exact) / exact);  // monomials are >= 0 on T: no cancellation
+      }
+  EXPECT_LE(worst, 1e-13) << which << " degree " << d;
+}
+
+// A rule of degree d must miss some monomial of degree d + 2 (the test can fail).
+void expect_inexact_beyond(const std::vector<RulePoint3>& rule, int d, const char* which) {
+  double worst = 0;
+  for (int a = 0; a <= d + 2; ++a)
+    for (int b = 0; a + b <= d + 2; ++b) {
+      const int c = d + 2 - a - b;
+      double s = 0;
+      for (const auto& q : rule) s += q.weight * std::pow(q.xi.x, a) * std::pow(q.xi.y, b) * std::pow(q.xi.z, c);
+      worst = std::max(worst, std::fabs(s / 6 - monomial_integral(a, b, c)) / monomial_integral(a, b, c));
     }
-    EXPECT_NEAR(wsum, 1, 1e-14);
-    double worst = 0;
-    for (int a = 0; a <= d; ++a)
-      for (int b = 0; a + b <= d; ++b)
-        for (int c = 0; a + b + c <= d; ++c) {
-          double s = 0;
-          for (const auto& q : rule) s += q.weight * std::pow(q.xi.x, a) * std::pow(q.xi.y, b) * std::pow(q.xi.z, c);
-          const double exact = monomial_integral(a, b, c);
-          worst = std::max(worst, std::fabs(s / 6 - exact) / exact);  // monomials are >= 0 on T: no cancellation
-        }
-    EXPECT_LE(worst, 1e-13) << "degree " << d;
+  EXPECT_GT(worst, 1e-6) << which << " degree " << d;
+}
+
+}  // namespace
+
+TEST(Rules3d, ExactForMonomialsUpToTheirDegree) {
+  for (int d = 0; d <= 18; ++d) {
+    expect_exact_to_degree(tetrahedron_rule(d), d, "tetrahedron_rule");
+    expect_exact_to_degree(tetrahedron_rule_for_polynomials(d), d, "tetrahedron_rule_for_polynomials");
   }
 }
 
 TEST(Rules3d, NotExactBeyondTheirDegree) {
-  // A rule of degree d must miss some monomial of degree d + 2 (the test can fail).
-  for (int d : {1, 2, 3, 5, 6, 7, 8, 9}) {
-    const auto& rule = tetrahedron_rule(d);
-    double worst = 0;
-    for (int a = 0; a <= d + 2; ++a)
-      for (int b = 0; a + b <= d + 2; ++b) {
-        const int c = d + 2 - a - b;
-        double s = 0;
-        for (const auto& q : rule) s += q.weight * std::pow(q.xi.x, a) * std::pow(q.xi.y, b) * std::pow(q.xi.z, c);
-        worst = std::max(worst, std::fabs(s / 6 - monomial_integral(a, b, c)) / monomial_integral(a, b, c));
-      }
-    EXPECT_GT(worst, 1e-6) << d;
+  for (int d : {1, 2, 3, 5, 6, 7, 8, 9}) expect_inexact_beyond(tetrahedron_rule(d), d, "tetrahedron_rule");
+  for (int d = 10; d <= 17; ++d) expect_inexact_beyond(tetrahedron_rule_for_polynomials(d), d, "for polynomials");
+}
+
+// The symmetric rules have fewer points than the products of the same degree.
+TEST(Rules3d, RulesForPolynomialsHaveFewerPoints) {
+  const size_t points[] = {95, 119, 147, 171, 229, 265, 341, 381};
+  for (int d = 10; d <= 17; ++d) {
+    EXPECT_EQ(tetrahedron_rule_for_polynomials(d).size(), points[d - 10]) << d;
+    EXPECT_LT(tetrahedron_rule_for_polynomials(d).size(), tetrahedron_rule(d).size()) << d;
   }
 }
 

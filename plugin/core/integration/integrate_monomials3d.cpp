@@ -27,7 +27,7 @@ double MonomialIntegrator3::integrate(const ClippedImage3& image, int kf, const 
   if (!fluid.integrates_moments(kf)) return points_.integrate(image, kf, piece, block);
   const MappedTet& mt = image.tetrahedron;
   // The rule of degree d + 1 on the piece's tetrahedra, in the fluid element's reference coordinates.
-  const auto& rule = tetrahedron_rule(fluid.moment_degree());
+  const auto& rule = tetrahedron_rule_for_polynomials(fluid.moment_degree());
   Point3 eta_corner[Piece3::kMaxVertices];
   for (int v = 0; v < piece.n; ++v) eta_corner[v] = fluid.to_reference(kf, piece.v[v], image.origin);
   int n = 0;

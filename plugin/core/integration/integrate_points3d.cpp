@@ -102,7 +102,8 @@ double PointIntegrator3::gather(const ClippedImage3& image, int kf, const Piece3
   if (image.reference_side) return gather_reference_side(image, kf, piece);
   point_jacobians_ = true;
   const MappedTet& mt = image.tetrahedron;
-  const auto& rule = tetrahedron_rule(image.degree);
+  // a polynomial integrand on an affine image; Newton's pull-backs keep the products
+  const auto& rule = mt.affine ? tetrahedron_rule_for_polynomials(image.degree) : tetrahedron_rule(image.degree);
   Point3 xi_corner[Piece3::kMaxVertices];
   MapValue3 mv;
   for (int v = 0; v < piece.n; ++v)
@@ -214,7 +215,7 @@ struct OverSimplex {
 
 double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int kf, const Piece3& piece) {
   const MappedTet& mt = image.tetrahedron;
-  const auto& rule = tetrahedron_rule(image.degree);
+  const auto& rule = tetrahedron_rule_for_polynomials(image.degree);
   // the piece's corners taken back by the sub-tetrahedron's affine interpolant: its tetrahedra's preimages
   Point3 xi_corner[Piece3::kMaxVertices];
   for (int v = 0; v < piece.n; ++v) xi_corner[v] = image.guess(piece.v[v]);
@@ -357,7 +358,7 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
   auto order = [&piece, probe](int v) { return dot(piece.v[v], probe); };
   // the face's rule, for int_0^l f (degree 2 p + 2 where l is quadratic; along the column, add_column's rule of
   // degree p: xi + s d is affine in s, f a polynomial of degree p in s)
-  const auto& face_rule = triangle_rule(std::min(60, 2 * image.degree + 2));
+  const auto& face_rule = triangle_rule_for_polynomials(std::min(60, 2 * image.degree + 2));
   Point3 corner[4];  // kf's, for fluid_plane
   if (fluid_) fluid_->mesh().corners(kf, corner);
   for (int f = 0; f < piece.faces; ++f) {
