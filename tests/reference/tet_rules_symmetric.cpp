@@ -39,15 +39,13 @@
 #include <string>
 #include <vector>
 
+#include "rule_search.hpp"
+
 namespace {
 
-using Quad = __float128;
-
-double root(double v) { return std::sqrt(v); }
-Quad root(Quad v) { return sqrtq(v); }
-double magnitude(double v) { return std::fabs(v); }
-long double magnitude(long double v) { return std::fabs(v); }
-Quad magnitude(Quad v) { return fabsq(v); }
+using rule_search::magnitude;
+using rule_search::Quad;
+using rule_search::root;
 
 // A value and its gradient in (x, y, z).
 template <class T>
@@ -224,54 +222,6 @@ void moments(const Structure& st, const std::vector<T>& u, std::vector<T>& r, st
   }
 }
 
-// Solves A x = b (n x n, row-major; b becomes x) by Gaussian elimination with partial pivoting.
-template <class T>
-bool solve(std::vector<T> a, std::vector<T>& b, int n) {
-  for (int c = 0; c < n; ++c) {
-    int pivot = c;
-    for (int r = c + 1; r < n; ++r)
-      if (magnitude(a[r * n + c]) > magnitude(a[pivot * n + c])) pivot = r;
-    if (!(magnitude(a[pivot * n + c]) > 0)) return false;
-    for (int k = 0; k < n; ++k) std::swap(a[c * n + k], a[pivot * n + k]);
-    std::swap(b[c], b[pivot]);
-    for (int r = c + 1; r < n; ++r) {
-      const T f = a[r * n + c] / a[c * n + c];
-      for (int k = c; k < n; ++k) a[r * n + k] -= f * a[c * n + k];
-      b[r] -= f * b[c];
-    }
-  }
-  for (int c = n - 1; c >= 0; --c) {
-    T s = b[c];
-    for (int k = c + 1; k < n; ++k) s -= a[c * n + k] * b[k];
-    b[c] = s / a[c * n + c];
-  }
-  return true;
-}
-
-// The normal equations J^T J and the gradient J^T r.
-template <class T>
-void normal(const std::vector<T>& jac, const std::vector<T>& r, int n, std::vector<T>& a, std::vector<T>& g) {
-  const int m = static_cast<int>(r.size());
-  a.assign(static_cast<size_t>(n) * n, 0);
-  g.assign(n, 0);
-  for (int i = 0; i < m; ++i) {
-    const T* row = jac.data() + static_cast<size_t>(i) * n;
-    for (int p = 0; p < n; ++p) {
-      if (row[p] == 0) continue;
-      g[p] += row[p] * r[i];
-      for (int q = p; q < n; ++q) a[p * n + q] += row[p] * row[q];
-    }
-  }
-  for (int p = 0; p < n; ++p)
-    for (int q = 0; q < p; ++q) a[p * n + q] = a[q * n + p];
-}
-
-template <class T>
-T squares(const std::vector<T>& r) {
-  T s = 0;
-  for (T v : r) s += v * v;
-  return s;
-}
 
 // The squares y_0..y_m of the coordinates of the point of the unit sphere with angles t_0..t_{m-1}
 // (y_0 = cos^2 t_0, y_1 = sin^2 t_0 cos^2 t_1, ..., y_m = sin^2 t_0 ... sin^2 t_{m-1}), summing to 1, and
@@ -344,74 +294,22 @@ void searchMoments(const Structure& st, const std::vector<double>& t, std::vecto
 
 // Levenberg-Marquardt in the search parameters from t; returns the final sum of squares.
 double search(const Structure& st, std::vector<double>& t, int iterations) {
-  const int n = st.unknowns;
-  std::vector<double> r, jac, a, g, rv;
-  searchMoments(st, t, r, &jac);
-  double f = squares(r), lambda = 1e-3;
-  for (int it = 0; it < iterations && f > 1e-26; ++it) {
-    normal(jac, r, n, a, g);
-    bool improved = false;
-    for (int tries = 0; tries < 12 && !improved; ++tries) {
-      std::vector<double> m = a, step(n);
-      for (int p = 0; p < n; ++p) {
-        m[p * n + p] += lambda * a[p * n + p] + 1e-14;
-        step[p] = -g[p];
-      }
-      if (!solve(m, step, n)) {
-        lambda *= 10;
-        continue;
-      }
-      std::vector<double> v = t;
-      for (int p = 0; p < n; ++p) v[p] += step[p];
-      searchMoments(st, v, rv, nullptr);
-      const double fv = squares(rv);
-      if (fv < f) {
-        t = v;
-        f = fv;
-        searchMoments(st, t, r, &jac);
-        lambda = std::max(lambda / 10, 1e-15);
-        improved = true;
-      } else {
-        lambda *= 10;
-      }
-    }
-    if (!improved || (it == 100 && f > 1e-6) || (it == 300 && f > 1e-12)) break;  // stuck, or a hopeless start
-  }
-  return f;
+  const auto residual = [&st](const std::vector<double>& v, std::vector<double>& r, std::vector<double>* jac) {
+    searchMoments(st, v, r, jac);
+  };
+  return rule_search::levenberg_marquardt(st.unknowns, residual, t, iterations);
 }
 
 // Gauss-Newton in __float128 on the orbit parameters, lightly damped (the structure may have more unknowns than
 // independent conditions); returns the final sum of squares.
 Quad polish(const Structure& st, std::vector<Quad>& u) {
-  const int n = st.unknowns;
-  std::vector<Quad> r, jac, a, g;
-  moments<Quad>(st, u, r, &jac);
-  Quad f = squares(r);
-  for (int it = 0; it < 12 && f > Quad(1e-66); ++it) {
-    normal(jac, r, n, a, g);
-    Quad scale = 0;
-    for (int p = 0; p < n; ++p) scale = std::max(scale, a[p * n + p]);
-    for (int p = 0; p < n; ++p) {
-      a[p * n + p] += scale * Quad(1e-40);
-      g[p] = -g[p];
-    }
-    if (!solve(a, g, n)) break;
-    std::vector<Quad> v = u, rv;
-    for (int p = 0; p < n; ++p) v[p] += g[p];
-    moments<Quad>(st, v, rv, &jac);
-    const Quad fv = squares(rv);
-    if (!(fv < f)) break;
-    u = v;
-    r = rv;
-    f = fv;
-  }
-  return f;
+  const auto residual = [&st](const std::vector<Quad>& v, std::vector<Quad>& r, std::vector<Quad>* jac) {
+    moments<Quad>(st, v, r, jac);
+  };
+  return rule_search::gauss_newton(st.unknowns, residual, u, 12);
 }
 
-template <class T>
-T factorial(int n) {
-  return n <= 1 ? T(1) : T(n) * factorial<T>(n - 1);
-}
+using rule_search::factorial;
 
 // The largest relative error of the rule on the monomials x^i y^j z^k, i + j + k <= d, of the reference
 // tetrahedron, whose mean is 6 i! j! k! / (i + j + k + 3)!.
@@ -440,11 +338,7 @@ T monomialError(const Structure& st, const std::vector<T>& u) {
   return worst;
 }
 
-std::string text(Quad v) {
-  char buf[64];
-  quadmath_snprintf(buf, sizeof buf, "%.25Qg", v);
-  return buf;
-}
+using rule_search::text;
 
 // Prints the rule, its residuals, smallest weight and smallest barycentric coordinate.
 void report(const Structure& st, const std::vector<Quad>& u, int attempt, unsigned seed) {
@@ -525,12 +419,7 @@ double searchWithKicks(const Structure& st, std::vector<double>& t, std::mt19937
 }
 
 bool valid(const Structure& st, const std::vector<Quad>& u, Quad minBary) {
-  for (const Node<Quad>& q : nodes(st, u)) {
-    if (!(q.w > 0)) return false;
-    for (Quad l : q.l)
-      if (!(l > minBary)) return false;
-  }
-  return true;
+  return rule_search::positive_inside(nodes(st, u), minBary);
 }
 
 }  // namespace
