@@ -225,11 +225,16 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
   // dX/ds at each point where the gradient terms read it there (not under weighted_sum_terms: add_weighted_sums forms
   // it from the points' weights and xi, dX/dxi being affine in xi)
   point_jacobians_ = gradients_ && !weighted_sum_terms(mt);
-  // X alone under a quadratic map: over each of the piece's tetrahedra from its Taylor terms (OverSimplex)
-  double hessian[3][3][3];
-  Point3 x_corner, d_corner[3];
-  const bool over = !point_jacobians_ && rule.size() > 10 && mt.reference_hessian(hessian);
-  if (over) reference_value(image, Point3(), x_corner, d_corner);
+  QuadraticTerms terms;
+  terms.quadratic = mt.reference_hessian(terms.hessian);
+  terms.alone = terms.quadratic && !point_jacobians_;
+  if (terms.alone) {
+    Point3 x_corner;
+    reference_value(image, Point3(), x_corner, terms.d_corner);
+  }
+  // X alone under a quadratic map: over each of the piece's tetrahedra from its Taylor terms (OverSimplex), where
+  // the rule has enough points to pay for them
+  const bool over = terms.alone && rule.size() > 10;
   OverSimplex x_over;
   double volume = 0;
   piece.for_each_tetrahedron_index([&](int i0, int i1, int i2, int i3) {
@@ -237,7 +242,7 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
     const Point3 xt[4] = {xi_corner[i0], xi_corner[i1], xi_corner[i2], xi_corner[i3]};
     const double measure = std::fabs(volume6(xt[0], xt[1], xt[2], xt[3])) / 6 * solid_det;
     const Point3 edges[3] = {xt[1] - xt[0], xt[2] - xt[0], xt[3] - xt[0]};
-    if (over) x_over.set(reference_position(image, xt[0]), d_corner, hessian, xt[0], edges, 3);
+    if (over) x_over.set(reference_position(image, xt[0]), terms.d_corner, terms.hessian, xt[0], edges, 3);
     for (const RulePoint3& rp : rule) {
       const Point3 xi = from_reference(xt, rp.xi);
       if (!point_jacobians_) {
@@ -250,7 +255,7 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
       add_reference_point(image, kf, xi, x, d, measure * rp.weight);
     }
   });
-  gather_band(image, kf, piece, xi_corner, solid_det);
+  gather_band(image, kf, piece, xi_corner, solid_det, terms);
   return volume;
 }
 
@@ -334,7 +339,7 @@ Point3 column_axis(Point3 z, const Point3 (&axis)[3], double& rise) {
 // where it lies on the sub-tetrahedron's boundary, each side takes those going into its own, from the same face
 // points (a fan from the face's least vertex, each triangle's corners in that order: order() below).
 void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Piece3& piece, const Point3* xi_corner,
-                                   double solid_det) {
+                                   double solid_det, const QuadraticTerms& terms) {
   const MappedTet& mt = image.tetrahedron;
   const double* inv = integrand_.fluid.inverse_jacobian(kf);  // rows: grad_x xi_1, xi_2, xi_3 of kf
   const Point3 r1{inv[0], inv[1], inv[2]}, r2{inv[3], inv[4], inv[5]}, r3{inv[6], inv[7], inv[8]};
@@ -345,12 +350,11 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
                         image.sub_xi[3] - image.sub_xi[0]};
   const double ex_det = dot(ex[0], cross(ex[1], ex[2]));
   const Point3 axis[3] = {mt.reference_direction(0), mt.reference_direction(1), mt.reference_direction(2)};
-  // a quadratic map along a column: X(xi + l d) = X + l D d + l^2 (d^T H d) / 2, D(xi + l d) = D + l H d
-  double hessian[3][3][3];
-  const bool quadratic = mt.reference_hessian(hessian);
-  // dX/dxi at xi = 0, for the face points' slopes when they take X alone (a quadratic map: dX/dxi = D_corner + H xi)
-  Point3 x_corner, D_corner[3];
-  if (quadratic && !point_jacobians_) reference_value(image, Point3(), x_corner, D_corner);
+  // a quadratic map along a column: X(xi + l d) = X + l D d + l^2 (d^T H d) / 2, D(xi + l d) = D + l H d; where
+  // the face points take X alone, their slopes from dX/dxi = D_corner + H xi
+  const bool quadratic = terms.quadratic, alone = terms.alone;
+  const double(&hessian)[3][3][3] = terms.hessian;
+  const Point3(&D_corner)[3] = terms.d_corner;
   // The face points must not depend on the side: the pieces' vertices are not numbered in any order
   // (clip_filtered), so they are ordered by a linear function of their position in a direction that no mesh
   // is aligned with (a tie, two vertices at the same value, is then an accident of measure zero).
@@ -394,7 +398,7 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
                  hessian[1][i][0] * d.x + hessian[1][i][1] * d.y + hessian[1][i][2] * d.z,
                  hessian[2][i][0] * d.x + hessian[2][i][1] * d.y + hessian[2][i][2] * d.z};
       dhd = d.x * hd[0] + d.y * hd[1] + d.z * hd[2];
-      if (!point_jacobians_) dd_corner = d.x * D_corner[0] + d.y * D_corner[1] + d.z * D_corner[2];
+      if (alone) dd_corner = d.x * D_corner[0] + d.y * D_corner[1] + d.z * D_corner[2];
       face.eta_dhd = linear_part(integrand_.fluid.inverse_jacobian(kf), dhd);
       if (across >= 0) face.across_dhd = linear_part(integrand_.fluid.inverse_jacobian(across), dhd);
     }
@@ -409,7 +413,6 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
       const Point3 p0 = piece.v[v0], p1 = piece.v[v1] - p0, p2 = piece.v[v2] - p0;
       const double area = std::sqrt(dot(cross(q1, q2), cross(q1, q2))) / 2 * solid_det;
       // X alone where dX/dxi is not read: a quadratic in the triangle's coordinates, and dX/dl affine, of slope H d
-      const bool alone = quadratic && !point_jacobians_;
       OverSimplex x_over;
       const Point3 edges[2] = {q1, q2};
       if (alone) x_over.set(reference_position(image, q0), D_corner, hessian, q0, edges, 2);

@@ -49,10 +49,18 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // the band between each of the piece's faces on a fluid face plane and that plane's true preimage, in
   // columns along one solid axis (Gauss-Legendre points along each column: gather_band).
   double gather_reference_side(const ClippedImage3& image, int kf, const Piece3& piece);
+  // A quadratic map's terms for one piece's points (gather_reference_side forms them once for the volume and the
+  // band): its constant hessian, and where the points take X alone (dX/dxi not read), dX/dxi at xi = 0, from which
+  // X follows by Taylor terms.
+  struct QuadraticTerms {
+    bool quadratic = false, alone = false;
+    double hessian[3][3][3];
+    Point3 d_corner[3];
+  };
   // The band's points (gather_reference_side): columns from the piece's faces on fluid face planes to the
   // planes' true preimages; xi_corner the piece's corners taken back, solid_det 6 |solid tetrahedron|.
   void gather_band(const ClippedImage3& image, int kf, const Piece3& piece, const Point3* xi_corner,
-                   double solid_det);
+                   double solid_det, const QuadraticTerms& terms);
   // A band face's columns: the axis d (in xi), a quadratic map's H d (dX/dxi's slope along d) and d^T H d, with
   // the latter in the reference coordinates of kf and of the fluid tetrahedron across (-1: none).
   struct BandFace {
