@@ -16,6 +16,8 @@
 #include <random>
 #include <vector>
 
+#include "rule_search.hpp"
+
 namespace {
 
 using Real = long double;
@@ -70,45 +72,13 @@ struct Problem {
   }
 
   bool valid(const std::vector<Real>& u) const {
-    for (const Point& q : rule(u)) {
-      if (!(q.w > 0)) return false;
-      for (Real l : q.l)
-        if (!(l > 0)) return false;
-    }
-    return true;
+    return rule_search::positive_inside(rule(u), 0);
   }
 };
 
-Real factorial(int n) { return n <= 1 ? 1 : n * factorial(n - 1); }
-
-Real squares(const std::vector<Real>& r) {
-  Real s = 0;
-  for (Real v : r) s += v * v;
-  return s;
-}
-
-// Solves A x = b (n x n, row-major) by Gaussian elimination with partial pivoting; b becomes x.
-bool solve(std::vector<Real>& a, std::vector<Real>& b, int n) {
-  for (int c = 0; c < n; ++c) {
-    int pivot = c;
-    for (int r = c + 1; r < n; ++r)
-      if (std::fabs(a[r * n + c]) > std::fabs(a[pivot * n + c])) pivot = r;
-    if (!(std::fabs(a[pivot * n + c]) > 0)) return false;
-    for (int k = 0; k < n; ++k) std::swap(a[c * n + k], a[pivot * n + k]);
-    std::swap(b[c], b[pivot]);
-    for (int r = c + 1; r < n; ++r) {
-      const Real f = a[r * n + c] / a[c * n + c];
-      for (int k = c; k < n; ++k) a[r * n + k] -= f * a[c * n + k];
-      b[r] -= f * b[c];
-    }
-  }
-  for (int c = n - 1; c >= 0; --c) {
-    Real s = b[c];
-    for (int k = c + 1; k < n; ++k) s -= a[c * n + k] * b[k];
-    b[c] = s / a[c * n + c];
-  }
-  return true;
-}
+using rule_search::solve;
+using rule_search::squares;
+using rule_search::factorial;
 
 // Levenberg-Marquardt from u (central-difference jacobian); returns the final sum of squares.
 Real minimise(const Problem& pb, std::vector<Real>& u) {
@@ -173,7 +143,8 @@ int main(int argc, char** argv) {
       for (int b = 0; a + b <= t; ++b) {
         const int c = t - a - b;
         pb.monomials.push_back({a, b, c});
-        pb.exact.push_back(6 * factorial(a) * factorial(b) * factorial(c) / factorial(t + 3));
+        pb.exact.push_back(6 * factorial<Real>(a) * factorial<Real>(b) * factorial<Real>(c) /
+                           factorial<Real>(t + 3));
       }
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> uniform(0, 1);
