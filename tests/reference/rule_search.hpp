@@ -1,6 +1,6 @@
-// What the searches for symmetric rules share (triangle_rules.cpp, tet_rules_symmetric.cpp; not part of the build):
-// magnitudes and roots in double, long double and __float128, dense linear algebra, Levenberg-Marquardt in double
-// and a lightly damped Gauss-Newton in __float128 on a residual given as a function.
+// What the searches for symmetric rules share (triangle_rules.cpp, tet_rules_symmetric.cpp, tet_rules.cpp; not part
+// of the build): magnitudes and roots in double, long double and __float128, dense linear algebra, Levenberg-
+// Marquardt in double and a lightly damped Gauss-Newton in __float128 on a residual given as a function.
 #pragma once
 #include <quadmath.h>
 
