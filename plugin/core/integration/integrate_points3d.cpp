@@ -318,6 +318,21 @@ Point3 column_axis(Point3 z, const Point3 (&axis)[3], double& rise) {
   return (g[a] > 0 ? 1.0 : -1.0) * axis[a];
 }
 
+// A column from xi to xi + l d (the solid tetrahedron's reference coordinates) cut where it leaves the solid
+// through a face on the solid mesh's boundary (bit i of boundary: the face lambda_i = 0 opposite corner i):
+// beyond it there is no solid, nothing of the band to integrate. Each lambda_i is affine along the column.
+double within_solid(unsigned boundary, Point3 xi, Point3 d, double l) {
+  if (boundary == 0) return l;
+  const double lambda[4] = {1 - xi.x - xi.y - xi.z, xi.x, xi.y, xi.z};
+  const double rate[4] = {-(d.x + d.y + d.z), d.x, d.y, d.z};  // d lambda_i / dl
+  for (int i = 0; i < 4; ++i) {
+    if (!(boundary >> i & 1u)) continue;
+    const double end = lambda[i] + rate[i] * l;  // lambda_i at the column's far end
+    if (end < 0) l = lambda[i] > 0 ? l * (lambda[i] / (lambda[i] - end)) : 0;
+  }
+  return l;
+}
+
 }  // namespace
 
 // The band. On a face of the piece in a face plane of kf (n . y = c, n outward), the straight image's
@@ -331,9 +346,12 @@ Point3 column_axis(Point3 z, const Point3 (&axis)[3], double& rise) {
 // degree 2 p + 2 where l is quadratic in xi (n . X linear along d), and smooth otherwise.
 // Columns along a common axis tile the region between the straight images' surface and the true one
 // whatever the sub-tetrahedra and solid tetrahedra it crosses, so that a kink along one fluid plane is
-// integrated to round-off. What is left, where the integrand jumps: t^2 per unit length where the axis
-// changes, where a column leaves the solid, and where two fluid faces meet (each plane's columns end at the
-// other's straight image, not at its true preimage). Each column adds f_K and, with the opposite sign, f_K' of the
+// integrated to round-off. A column that leaves the solid through its boundary stops there (within_solid).
+// What is left, where the integrand jumps: t^2 per unit length where the axis changes, where a column crosses
+// into another solid tetrahedron (it goes on with this one's polynomials) or is cut at the boundary (the face's
+// integrand has a kink where the root meets the boundary, and the part of the band between the boundary and the
+// true preimage that no column from a face reaches is left out), and where two fluid faces meet (each plane's
+// columns end at the other's straight image, not at its true preimage). Each column adds f_K and, with the opposite sign, f_K' of the
 // fluid tetrahedron across, at the same points: the band's integral of f_K - f_K', to round-off where f does not
 // jump. Where the face is inside the sub-tetrahedron's image, one of the two pieces takes the columns for both;
 // where it lies on the sub-tetrahedron's boundary, each side takes those going into its own, from the same face
@@ -446,8 +464,10 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
         }
         const double disc = c1 * c1 - 4 * c0 * c2;
         // the root continuous with -c0 / c1 as c2 -> 0, in the form without cancellation
-        const double l = disc >= 0 ? -2 * c0 / (c1 + std::sqrt(disc)) : -c0 / c1;
-        if (on_boundary && !(l < 0)) continue;
+        const double root = disc >= 0 ? -2 * c0 / (c1 + std::sqrt(disc)) : -c0 / c1;
+        if (on_boundary && !(root < 0)) continue;
+        const double l = within_solid(mt.boundary_faces, xi, d, root);
+        if (l == 0) continue;
         add_column(image, kf, face, xi, x0, dd, D, l, l * height * area * rp.weight);
       }
     }
