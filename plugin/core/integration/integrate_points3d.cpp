@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "sides/report.hpp"
@@ -256,6 +257,7 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
     }
   });
   gather_band(image, kf, piece, xi_corner, solid_det, terms);
+  gather_side_band(image, kf, piece, xi_corner, solid_det, terms);
   return volume;
 }
 
@@ -319,8 +321,8 @@ Point3 column_axis(Point3 z, const Point3 (&axis)[3], double& rise) {
 }
 
 // A column from xi to xi + l d (the solid tetrahedron's reference coordinates) cut where it leaves the solid
-// through a face on the solid mesh's boundary (bit i of boundary: the face lambda_i = 0 opposite corner i):
-// beyond it there is no solid, nothing of the band to integrate. Each lambda_i is affine along the column.
+// through a face on the solid mesh's boundary (bit i of boundary: the face lambda_i = 0 opposite corner i). Each
+// lambda_i is affine along the column.
 double within_solid(unsigned boundary, Point3 xi, Point3 d, double l) {
   if (boundary == 0) return l;
   const double lambda[4] = {1 - xi.x - xi.y - xi.z, xi.x, xi.y, xi.z};
@@ -333,7 +335,63 @@ double within_solid(unsigned boundary, Point3 xi, Point3 d, double l) {
   return l;
 }
 
+// lambda_i and grad lambda_i on the reference tetrahedron (corner 0 at the origin, corner i at e_i).
+inline double barycentric(Point3 xi, int i) {
+  return i == 0 ? 1 - xi.x - xi.y - xi.z : i == 1 ? xi.x : i == 2 ? xi.y : xi.z;
+}
+inline Point3 barycentric_gradient(int i) {
+  return i == 0 ? Point3{-1, -1, -1} : i == 1 ? Point3{1, 0, 0} : i == 2 ? Point3{0, 1, 0} : Point3{0, 0, 1};
+}
+
 }  // namespace
+
+double PointIntegrator3::plane_root(const ClippedImage3& image, Point3 n, Point3 y, Point3 xi, Point3 x, Point3 slope,
+                                    Point3 w) const {
+  // q(r) = n . (X(xi + r w) - y) = q0 + q1 r + q2 r^2 (a P2 map; q2 from q at the first-order step otherwise)
+  const double q0 = dot(n, x - y), q1 = dot(n, slope);
+  if (q0 == 0) return 0;
+  if (!(q1 != 0)) return std::numeric_limits<double>::quiet_NaN();
+  const double r1 = -q0 / q1, q2 = dot(n, reference_position(image, xi + r1 * w) - y) / (r1 * r1);
+  const double disc = q1 * q1 - 4 * q0 * q2;
+  if (!(disc >= 0)) return std::numeric_limits<double>::quiet_NaN();  // no root: the plane's preimage is not met
+  return -2 * q0 / (q1 + std::copysign(std::sqrt(disc), q1));
+}
+
+bool PointIntegrator3::band_face(const ClippedImage3& image, int kf, int j, int across, const QuadraticTerms& terms,
+                                  BandFace& face, Point3& n, double& rise, double& height) const {
+  const MappedTet& mt = image.tetrahedron;
+  const double* inv = integrand_.fluid.inverse_jacobian(kf);  // rows: grad_x xi_1, xi_2, xi_3 of kf
+  const Point3 r1{inv[0], inv[1], inv[2]}, r2{inv[3], inv[4], inv[5]}, r3{inv[6], inv[7], inv[8]};
+  n = j == 0 ? r1 + r2 + r3 : -1.0 * (j == 1 ? r1 : j == 2 ? r2 : r3);
+  // dy/dxi of the straight image: E_y E_xi^-1 (edges from corner 0); grad_xi (n . A) = E_xi^-T E_y^T n
+  const Point3 ey[3] = {image.sub_y[1] - image.sub_y[0], image.sub_y[2] - image.sub_y[0],
+                        image.sub_y[3] - image.sub_y[0]};
+  const Point3 ex[3] = {image.sub_xi[1] - image.sub_xi[0], image.sub_xi[2] - image.sub_xi[0],
+                        image.sub_xi[3] - image.sub_xi[0]};
+  const double ex_det = dot(ex[0], cross(ex[1], ex[2]));
+  const Point3 w{dot(ey[0], n), dot(ey[1], n), dot(ey[2], n)};  // E_y^T n
+  // z = E_xi^-T w: z . ex[i] = w_i, by the cofactors of E_xi
+  const Point3 z = (1 / ex_det) * (w.x * cross(ex[1], ex[2]) + w.y * cross(ex[2], ex[0]) + w.z * cross(ex[0], ex[1]));
+  const double grad = std::sqrt(dot(z, z));
+  if (!(grad > 0)) return false;
+  const Point3 axis[3] = {mt.reference_direction(0), mt.reference_direction(1), mt.reference_direction(2)};
+  const Point3 d = column_axis(z, axis, rise);  // outward: n . A grows along d
+  height = rise / grad;                         // d . nu: a column's height per unit of l
+  face.d = d;
+  face.quadratic = terms.quadratic;
+  face.across = across;
+  if (terms.quadratic) {
+    const double(&hessian)[3][3][3] = terms.hessian;
+    for (int i = 0; i < 3; ++i)
+      face.hd[i] = {hessian[0][i][0] * d.x + hessian[0][i][1] * d.y + hessian[0][i][2] * d.z,
+                    hessian[1][i][0] * d.x + hessian[1][i][1] * d.y + hessian[1][i][2] * d.z,
+                    hessian[2][i][0] * d.x + hessian[2][i][1] * d.y + hessian[2][i][2] * d.z};
+    face.dhd = d.x * face.hd[0] + d.y * face.hd[1] + d.z * face.hd[2];
+    face.eta_dhd = linear_part(integrand_.fluid.inverse_jacobian(kf), face.dhd);
+    if (across >= 0) face.across_dhd = linear_part(integrand_.fluid.inverse_jacobian(across), face.dhd);
+  }
+  return true;
+}
 
 // The band. On a face of the piece in a face plane of kf (n . y = c, n outward), the straight image's
 // boundary A(xi) lies where the true one X(xi) does not: the true piece ends where q(xi) = n . X(xi) - c
@@ -346,28 +404,18 @@ double within_solid(unsigned boundary, Point3 xi, Point3 d, double l) {
 // degree 2 p + 2 where l is quadratic in xi (n . X linear along d), and smooth otherwise.
 // Columns along a common axis tile the region between the straight images' surface and the true one
 // whatever the sub-tetrahedra and solid tetrahedra it crosses, so that a kink along one fluid plane is
-// integrated to round-off. A column that leaves the solid through its boundary stops there (within_solid).
-// What is left, where the integrand jumps: t^2 per unit length where the axis changes, where a column crosses
-// into another solid tetrahedron (it goes on with this one's polynomials) or is cut at the boundary (the face's
-// integrand has a kink where the root meets the boundary, and the part of the band between the boundary and the
-// true preimage that no column from a face reaches is left out), and where two fluid faces meet (each plane's
-// columns end at the other's straight image, not at its true preimage). Each column adds f_K and, with the opposite sign, f_K' of the
-// fluid tetrahedron across, at the same points: the band's integral of f_K - f_K', to round-off where f does not
-// jump. Where the face is inside the sub-tetrahedron's image, one of the two pieces takes the columns for both;
-// where it lies on the sub-tetrahedron's boundary, each side takes those going into its own, from the same face
-// points (a fan from the face's least vertex, each triangle's corners in that order: order() below).
+// integrated to round-off. A column may go on beyond the solid's boundary; gather_side_band takes that part back
+// and adds the part of the band that no column from a face reaches. What is left, where the integrand jumps:
+// t^2 per unit length where the axis changes, where a column crosses into another solid tetrahedron (it goes on
+// with this one's polynomials, which may kink across the face), and where two fluid faces meet (each plane's
+// columns end at the other's straight image, not at its true preimage). Each column adds f_K and, with the
+// opposite sign, f_K' of the fluid tetrahedron across, at the same points: the band's integral of f_K - f_K', to
+// round-off where f does not jump. Where the face is inside the sub-tetrahedron's image, one of the two pieces
+// takes the columns for both; where it lies on the sub-tetrahedron's boundary, each side takes those going into
+// its own, from the same face points (a fan from the face's least vertex, each triangle's corners in that order:
+// order() below).
 void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Piece3& piece, const Point3* xi_corner,
                                    double solid_det, const QuadraticTerms& terms) {
-  const MappedTet& mt = image.tetrahedron;
-  const double* inv = integrand_.fluid.inverse_jacobian(kf);  // rows: grad_x xi_1, xi_2, xi_3 of kf
-  const Point3 r1{inv[0], inv[1], inv[2]}, r2{inv[3], inv[4], inv[5]}, r3{inv[6], inv[7], inv[8]};
-  // dy/dxi of the straight image: E_y E_xi^-1 (edges from corner 0); grad_xi (n . A) = E_xi^-T E_y^T n
-  const Point3 ey[3] = {image.sub_y[1] - image.sub_y[0], image.sub_y[2] - image.sub_y[0],
-                        image.sub_y[3] - image.sub_y[0]};
-  const Point3 ex[3] = {image.sub_xi[1] - image.sub_xi[0], image.sub_xi[2] - image.sub_xi[0],
-                        image.sub_xi[3] - image.sub_xi[0]};
-  const double ex_det = dot(ex[0], cross(ex[1], ex[2]));
-  const Point3 axis[3] = {mt.reference_direction(0), mt.reference_direction(1), mt.reference_direction(2)};
   // a quadratic map along a column: X(xi + l d) = X + l D d + l^2 (d^T H d) / 2, D(xi + l d) = D + l H d; where
   // the face points take X alone, their slopes from dX/dxi = D_corner + H xi
   const bool quadratic = terms.quadratic, alone = terms.alone;
@@ -395,31 +443,13 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
     // takes the columns for both (add_across adds the other's).
     const int across = fluid_ ? fluid_->mesh().neighbours[kf][j] : -1;
     if (!on_boundary && across >= 0 && across < kf) continue;
-    const Point3 n = j == 0 ? r1 + r2 + r3 : -1.0 * (j == 1 ? r1 : j == 2 ? r2 : r3);
-    const Point3 w{dot(ey[0], n), dot(ey[1], n), dot(ey[2], n)};  // E_y^T n
-    // z = E_xi^-T w: z . ex[i] = w_i, by the cofactors of E_xi
-    const Point3 z = (1 / ex_det) * (w.x * cross(ex[1], ex[2]) + w.y * cross(ex[2], ex[0]) + w.z * cross(ex[0], ex[1]));
-    const double grad = std::sqrt(dot(z, z));
-    if (!(grad > 0)) continue;
-    double rise;                                    // d(n . A) along d
-    const Point3 d = column_axis(z, axis, rise);    // outward: n . A grows along d
-    const double height = rise / grad;              // d . nu: a column's height per unit of l
     BandFace face;
-    face.d = d;
-    face.quadratic = quadratic;
-    face.across = across;
-    Point3 (&hd)[3] = face.hd;
-    Point3 &dhd = face.dhd, dd_corner;  // dX/dl at xi = 0 (quadratic maps)
-    if (quadratic) {
-      for (int i = 0; i < 3; ++i)
-        hd[i] = {hessian[0][i][0] * d.x + hessian[0][i][1] * d.y + hessian[0][i][2] * d.z,
-                 hessian[1][i][0] * d.x + hessian[1][i][1] * d.y + hessian[1][i][2] * d.z,
-                 hessian[2][i][0] * d.x + hessian[2][i][1] * d.y + hessian[2][i][2] * d.z};
-      dhd = d.x * hd[0] + d.y * hd[1] + d.z * hd[2];
-      if (alone) dd_corner = d.x * D_corner[0] + d.y * D_corner[1] + d.z * D_corner[2];
-      face.eta_dhd = linear_part(integrand_.fluid.inverse_jacobian(kf), dhd);
-      if (across >= 0) face.across_dhd = linear_part(integrand_.fluid.inverse_jacobian(across), dhd);
-    }
+    Point3 n, dd_corner;  // dd_corner: dX/dl at xi = 0 (quadratic maps whose face points take X alone)
+    double rise, height;
+    if (!band_face(image, kf, j, across, terms, face, n, rise, height)) continue;
+    const Point3 d = face.d;
+    const Point3(&hd)[3] = face.hd;
+    if (alone) dd_corner = d.x * D_corner[0] + d.y * D_corner[1] + d.z * D_corner[2];
     // the fan from the face's least vertex in order(), each triangle's other corners in that order
     int first = s;
     for (int i = s + 1; i < e; ++i) first = order(piece.face_index[i]) < order(piece.face_index[first]) ? i : first;
@@ -456,7 +486,7 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
         if (jn > 0.5 * rise) {
           c1 = jn;
           if (quadratic) {
-            c2 = 0.5 * dot(n, dhd);
+            c2 = 0.5 * dot(n, face.dhd);
           } else {
             const double l1 = -c0 / c1;
             c2 = dot(n, reference_position(image, xi + l1 * d) - y) / (l1 * l1);
@@ -466,9 +496,89 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
         // the root continuous with -c0 / c1 as c2 -> 0, in the form without cancellation
         const double root = disc >= 0 ? -2 * c0 / (c1 + std::sqrt(disc)) : -c0 / c1;
         if (on_boundary && !(root < 0)) continue;
-        const double l = within_solid(mt.boundary_faces, xi, d, root);
-        if (l == 0) continue;
-        add_column(image, kf, face, xi, x0, dd, D, l, l * height * area * rp.weight);
+        add_column(image, kf, face, xi, x0, dd, D, root, root * height * area * rp.weight);
+      }
+    }
+  }
+}
+
+// The band where it meets the solid's boundary. Along a column's line the band is the interval between a fluid
+// plane's straight preimage P (under the sub-tetrahedra's affine interpolants) and its true one Q. gather_band's
+// columns start on P inside the solid tetrahedron T; where Q lies beyond a boundary face sigma of T, they go on
+// past sigma (so that their integrand stays smooth over the face), and where P lies beyond sigma and Q inside,
+// the part between sigma and Q has no column. Both parts meet sigma between P's trace there (an edge, in the
+// fluid plane, of a piece's face on sigma) and Q's (a conic): they are taken in columns within sigma from that
+// edge along e (the steepest ascent in sigma of n . A_T, A_T the affine interpolant of T's corner images: the same
+// for every sub-tetrahedron) to the root of n . X = c, on the piece's side of the edge, and from each of their
+// points a column along the axis d to Q. There the band is kf's straight and the fluid tetrahedron across's
+// truly: a column into T adds f_across - f_kf, one out of T takes back what gather_band's columns added there.
+void PointIntegrator3::gather_side_band(const ClippedImage3& image, int kf, const Piece3& piece,
+                                        const Point3* xi_corner, double solid_det, const QuadraticTerms& terms) {
+  const MappedTet& mt = image.tetrahedron;
+  const unsigned faces = mt.boundary_faces;
+  if (faces == 0) return;
+  int on_face[4];  // the sub-tetrahedron's face opposite its corner c lies on T's face on_face[c] (or -1)
+  bool any = false;
+  for (int c = 0; c < 4; ++c) {
+    on_face[c] = -1;
+    for (int i = 0; i < 4 && on_face[c] < 0; ++i) {
+      bool all = faces >> i & 1u;
+      for (int m = 0; m < 4 && all; ++m) all = m == c || barycentric(image.sub_xi[m], i) == 0;
+      if (all) on_face[c] = i;
+    }
+    any = any || on_face[c] >= 0;
+  }
+  if (!any) return;
+  const LineRule& along_edge = line_rule(2 * image.degree + 2);
+  const LineRule& inward = line_rule(image.degree + 2);
+  for (int f = 0; f < piece.faces; ++f) {
+    const int s = piece.face_start[f], e = piece.face_start[f + 1];
+    unsigned common = 0xFFu;
+    for (int i = s; i < e; ++i) common &= piece.planes[piece.face_index[i]];
+    const int sigma = (common & 0xFu) != 0 ? on_face[__builtin_ctz(common & 0xFu)] : -1;
+    if (sigma < 0) continue;
+    const Point3 nu = barycentric_gradient(sigma);  // sigma's normal in xi, into T
+    for (int a = s; a < e; ++a) {
+      const int u = piece.face_index[a], v = piece.face_index[a + 1 < e ? a + 1 : s];
+      const unsigned fluid_planes = (piece.planes[u] & piece.planes[v]) >> 4 & 0xFu;
+      if (__builtin_popcount(fluid_planes) != 1) continue;
+      const int j = __builtin_ctz(fluid_planes), across = fluid_ ? fluid_->mesh().neighbours[kf][j] : -1;
+      BandFace face;
+      Point3 n;
+      double rise, height;
+      if (!band_face(image, kf, j, across, terms, face, n, rise, height)) continue;
+      const Point3 d = face.d;
+      const Point3 g{dot(n, mt.image[1] - mt.image[0]), dot(n, mt.image[2] - mt.image[0]),
+                     dot(n, mt.image[3] - mt.image[0])};  // grad_xi (n . A_T)
+      Point3 dir = g - (dot(g, nu) / dot(nu, nu)) * nu;
+      const double length = std::sqrt(dot(dir, dir));
+      if (!(length > 0)) continue;
+      dir = (1 / length) * dir;
+      const Point3 xu = xi_corner[u], edge = xi_corner[v] - xu, normal = cross(edge, nu);  // normal: in sigma
+      double side = 0;  // the piece's side of the edge: its vertex farthest from the edge's line
+      for (int b = s; b < e; ++b) {
+        const double t = dot(xi_corner[piece.face_index[b]] - xu, normal);
+        side = std::fabs(t) > std::fabs(side) ? t : side;
+      }
+      const double volume = std::fabs(dot(edge, cross(dir, d))) * solid_det;
+      for (size_t k = 0; k < along_edge.nodes.size(); ++k) {
+        const Point3 p0 = xu + along_edge.nodes[k] * edge;
+        Point3 x, D[3];
+        reference_value(image, p0, x, D);
+        const double r = plane_root(image, n, piece.v[u], p0, x, dir.x * D[0] + dir.y * D[1] + dir.z * D[2], dir);
+        if (!(r * dot(dir, normal) * side > 0)) continue;  // none (NaN), or on the other piece's side
+        for (size_t q = 0; q < inward.nodes.size(); ++q) {
+          const Point3 p = p0 + (inward.nodes[q] * r) * dir;
+          reference_value(image, p, x, D);
+          const Point3 dd = d.x * D[0] + d.y * D[1] + d.z * D[2];
+          const double root = plane_root(image, n, piece.v[u], p, x, dd, d);
+          if (!std::isfinite(root) || root == 0) continue;
+          const bool into = root * dot(nu, d) > 0;
+          const double l = into ? within_solid(faces, p, d, root) : root;
+          if (l == 0) continue;
+          const double measure = volume * along_edge.weights[k] * std::fabs(r) * inward.weights[q] * std::fabs(l);
+          add_column(image, kf, face, p, x, dd, D, l, into ? -measure : measure);
+        }
       }
     }
   }

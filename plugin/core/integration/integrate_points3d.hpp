@@ -68,6 +68,19 @@ class PointIntegrator3 : public PieceIntegrator3 {
     bool quadratic = false;
     int across = -1;
   };
+  // The columns of kf's face plane j (its fluid neighbour across): face, the plane's outward normal n (n . y grows
+  // out of kf), rise = d(n . A)/dl along the axis and height = d . nu; false where the plane's preimage under the
+  // sub-tetrahedron's straight image has no gradient.
+  bool band_face(const ClippedImage3& image, int kf, int j, int across, const QuadraticTerms& terms, BandFace& face,
+                 Point3& n, double& rise, double& height) const;
+  // The band where it meets the solid's boundary (gather_reference_side, after gather_band): columns from the
+  // solid tetrahedron's boundary faces that add the part of the band no column from a piece's face reaches and
+  // take back the part beyond the solid that those columns covered.
+  void gather_side_band(const ClippedImage3& image, int kf, const Piece3& piece, const Point3* xi_corner,
+                        double solid_det, const QuadraticTerms& terms);
+  // The root nearest 0 of n . (X(xi + r w) - y) (X = x and dX/dr = slope at xi), quadratic in r for a P2 map;
+  // NaN where it has none.
+  double plane_root(const ClippedImage3& image, Point3 n, Point3 y, Point3 xi, Point3 x, Point3 slope, Point3 w) const;
   // The points of one column (gather_band): from xi, where X is x0, dX/dl is dd and dX/dxi is D (where the
   // points carry it), to l, the column's weight int_face's l height dA; in kf, and with the opposite weight in
   // the fluid tetrahedron across (across_).
