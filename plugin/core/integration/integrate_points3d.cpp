@@ -320,21 +320,6 @@ Point3 column_axis(Point3 z, const Point3 (&axis)[3], double& rise) {
   return (g[a] > 0 ? 1.0 : -1.0) * axis[a];
 }
 
-// A column from xi to xi + l d (the solid tetrahedron's reference coordinates) cut where it leaves the solid
-// through a face on the solid mesh's boundary (bit i of boundary: the face lambda_i = 0 opposite corner i). Each
-// lambda_i is affine along the column.
-double within_solid(unsigned boundary, Point3 xi, Point3 d, double l) {
-  if (boundary == 0) return l;
-  const double lambda[4] = {1 - xi.x - xi.y - xi.z, xi.x, xi.y, xi.z};
-  const double rate[4] = {-(d.x + d.y + d.z), d.x, d.y, d.z};  // d lambda_i / dl
-  for (int i = 0; i < 4; ++i) {
-    if (!(boundary >> i & 1u)) continue;
-    const double end = lambda[i] + rate[i] * l;  // lambda_i at the column's far end
-    if (end < 0) l = lambda[i] > 0 ? l * (lambda[i] / (lambda[i] - end)) : 0;
-  }
-  return l;
-}
-
 // lambda_i and grad lambda_i on the reference tetrahedron (corner 0 at the origin, corner i at e_i).
 inline double barycentric(Point3 xi, int i) {
   return i == 0 ? 1 - xi.x - xi.y - xi.z : i == 1 ? xi.x : i == 2 ? xi.y : xi.z;
@@ -573,11 +558,12 @@ void PointIntegrator3::gather_side_band(const ClippedImage3& image, int kf, cons
           const Point3 dd = d.x * D[0] + d.y * D[1] + d.z * D[2];
           const double root = plane_root(image, n, piece.v[u], p, x, dd, d);
           if (!std::isfinite(root) || root == 0) continue;
+          // into T: the band no column reached; out of T: what gather_band's columns added beyond the solid. A
+          // column into T is not cut where it leaves T: as gather_band's, it goes on, and is taken back where it
+          // leaves the solid.
           const bool into = root * dot(nu, d) > 0;
-          const double l = into ? within_solid(faces, p, d, root) : root;
-          if (l == 0) continue;
-          const double measure = volume * along_edge.weights[k] * std::fabs(r) * inward.weights[q] * std::fabs(l);
-          add_column(image, kf, face, p, x, dd, D, l, into ? -measure : measure);
+          const double measure = volume * along_edge.weights[k] * std::fabs(r) * inward.weights[q] * std::fabs(root);
+          add_column(image, kf, face, p, x, dd, D, root, into ? -measure : measure);
         }
       }
     }
