@@ -21,9 +21,6 @@ const Point3 kCorners[4] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
 
 void MappedTet::prepare(const Mesh3& solid_mesh, const SolidMap3& map, int kk) {
   fit(solid_mesh, map, kk);
-  boundary_faces = 0;
-  if (static_cast<int>(solid_mesh.neighbours.size()) == solid_mesh.size())
-    for (int i = 0; i < 4; ++i) boundary_faces |= static_cast<unsigned>(solid_mesh.neighbours[k][i] < 0) << i;
   if (!map.corners(k, image))
     for (int i = 0; i < 4; ++i) image[i] = degree_ >= 1 ? at(kCorners[i]).x : map.evaluate(k, kCorners[i]).x;
   for (int i = 0; i < 4; ++i)
@@ -48,6 +45,10 @@ void MappedTet::prepare(const Mesh3& solid_mesh, const SolidMap3& map, int kk) {
     if (o < 0 && (affine || planar)) throw inverts();
     if (!affine) check_fold(*this);
   }
+  // read by the curved images' band alone (the adjacency, in the mesh's order, is not read for affine ones)
+  boundary_faces = 0;
+  if (!affine && static_cast<int>(solid_mesh.neighbours.size()) == solid_mesh.size())
+    for (int i = 0; i < 4; ++i) boundary_faces |= static_cast<unsigned>(solid_mesh.neighbours[k][i] < 0) << i;
   if (affine) {
     // dX/ds = [image edges] [solid edges]^-1
     const Point3 f[3] = {f1, f2, f3};
