@@ -331,12 +331,27 @@ inline Point3 barycentric_gradient(int i) {
 }  // namespace
 
 double PointIntegrator3::plane_root(const ClippedImage3& image, Point3 n, Point3 y, Point3 xi, Point3 x, Point3 slope,
-                                    Point3 w) const {
-  // q(r) = n . (X(xi + r w) - y) = q0 + q1 r + q2 r^2 (a P2 map; q2 from q at the first-order step otherwise)
+                                    Point3 w, const QuadraticTerms& terms) const {
+  // q(r) = n . (X(xi + r w) - y) = q0 + q1 r + q2 r^2: a quadratic map's q2 = n . (w^T H w) / 2, else q2 from q at
+  // the first-order step
   const double q0 = dot(n, x - y), q1 = dot(n, slope);
   if (q0 == 0) return 0;
   if (!(q1 != 0)) return std::numeric_limits<double>::quiet_NaN();
-  const double r1 = -q0 / q1, q2 = dot(n, reference_position(image, xi + r1 * w) - y) / (r1 * r1);
+  const double r1 = -q0 / q1;
+  double q2;
+  if (terms.quadratic) {
+    const double(&h)[3][3][3] = terms.hessian;
+    Point3 whw;
+    for (int i = 0; i < 3; ++i) {
+      const double wi = coordinate(w, i);
+      whw = whw + wi * Point3{h[0][i][0] * w.x + h[0][i][1] * w.y + h[0][i][2] * w.z,
+                              h[1][i][0] * w.x + h[1][i][1] * w.y + h[1][i][2] * w.z,
+                              h[2][i][0] * w.x + h[2][i][1] * w.y + h[2][i][2] * w.z};
+    }
+    q2 = 0.5 * dot(n, whw);
+  } else {
+    q2 = dot(n, reference_position(image, xi + r1 * w) - y) / (r1 * r1);
+  }
   const double disc = q1 * q1 - 4 * q0 * q2;
   if (!(disc >= 0)) return std::numeric_limits<double>::quiet_NaN();  // no root: the plane's preimage is not met
   return -2 * q0 / (q1 + std::copysign(std::sqrt(disc), q1));
@@ -550,13 +565,14 @@ void PointIntegrator3::gather_side_band(const ClippedImage3& image, int kf, cons
         const Point3 p0 = xu + along_edge.nodes[k] * edge;
         Point3 x, D[3];
         reference_value(image, p0, x, D);
-        const double r = plane_root(image, n, piece.v[u], p0, x, dir.x * D[0] + dir.y * D[1] + dir.z * D[2], dir);
+        const double r =
+            plane_root(image, n, piece.v[u], p0, x, dir.x * D[0] + dir.y * D[1] + dir.z * D[2], dir, terms);
         if (!(r * dot(dir, normal) * side > 0)) continue;  // none (NaN), or on the other piece's side
         for (size_t q = 0; q < inward.nodes.size(); ++q) {
           const Point3 p = p0 + (inward.nodes[q] * r) * dir;
           reference_value(image, p, x, D);
           const Point3 dd = d.x * D[0] + d.y * D[1] + d.z * D[2];
-          const double root = plane_root(image, n, piece.v[u], p, x, dd, d);
+          const double root = plane_root(image, n, piece.v[u], p, x, dd, d, terms);
           if (!std::isfinite(root) || root == 0) continue;
           // into T: the band no column reached; out of T: what gather_band's columns added beyond the solid. A
           // column into T is not cut where it leaves T: as gather_band's, it goes on, and is taken back where it

@@ -78,9 +78,10 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // take back the part beyond the solid that those columns covered.
   void gather_side_band(const ClippedImage3& image, int kf, const Piece3& piece, const Point3* xi_corner,
                         double solid_det, const QuadraticTerms& terms);
-  // The root nearest 0 of n . (X(xi + r w) - y) (X = x and dX/dr = slope at xi), quadratic in r for a P2 map;
-  // NaN where it has none.
-  double plane_root(const ClippedImage3& image, Point3 n, Point3 y, Point3 xi, Point3 x, Point3 slope, Point3 w) const;
+  // The root nearest 0 of n . (X(xi + r w) - y) (X = x and dX/dr = slope at xi), quadratic in r for a P2 map
+  // (terms: its hessian); NaN where it has none.
+  double plane_root(const ClippedImage3& image, Point3 n, Point3 y, Point3 xi, Point3 x, Point3 slope, Point3 w,
+                    const QuadraticTerms& terms) const;
   // The points of one column (gather_band): from xi, where X is x0, dX/dl is dd and dX/dxi is D (where the
   // points carry it), to l, the column's weight int_face's l height dA; in kf, and with the opposite weight in
   // the fluid tetrahedron across (across_).
