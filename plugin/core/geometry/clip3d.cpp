@@ -595,6 +595,8 @@ class SimplePolytope {
     v_[i].d[j] = d;
     v_[i].e[j] = e;
   }
+  // Vertex i (of a's four, after start()) lies on plane `plane` too (Piece3::planes' numbering).
+  void add_plane(int i, int plane) { v_[i].planes |= 1u << plane; }
   // a's four vertices, their values against b's planes set (set_value).
   void start(const Point3 a[4]) {
     n_ = 4;
@@ -774,6 +776,7 @@ bool filtered_piece(const Point3 a[4], const Point3 b[4], const TetNormals& b_no
   // the values and bounds go straight to the polytope's first four vertices (start() takes them there)
   SimplePolytope polytope;
   unsigned inner = 0, outer = 0;  // bit 4 j + i: a's vertex i certainly inside, outside b's face j
+  unsigned on = 0;                // bit 4 j + i: a's vertex i exactly on b's face plane j (exact planes only)
   unsigned bounded = 0xFu;        // bit i: vertex i's permanents all >= 2^-900 s so far
   beyond = 0;
   out.n = 0;
@@ -796,30 +799,54 @@ bool filtered_piece(const Point3 a[4], const Point3 b[4], const TetNormals& b_no
     // kRelative permanent of orient3d_bound where permanent >= 2^-900 s, else (tiny or NaN) the exact clip
     const int q = j == 0 ? 0 : 1;
     const Point3 n = b_normals.n(j), pn = b_normals.pn(j);
-    unsigned in = 0, out_j = 0;
+    // an exact plane (TetNormals::exact): the estimate's sign is the side's, 0 exactly on the plane (its value
+    // still carries the bound ej, which the crossings' values inherit)
+    const Lanes2 sign_bound = b_normals.exact[j] ? Lanes2{0, 0} : Lanes2{1, 1};
+    unsigned in = 0, out_j = 0, on_j = 0;
     for (int h = 0; h < 2; ++h) {
       const Lanes2 dj = wx[q][h] * n.x + wy[q][h] * n.y + wz[q][h] * n.z;
       const Lanes2 permanent = fx[q][h] * pn.x + fy[q][h] * pn.y + fz[q][h] * pn.z;
-      const Lanes2 ej = kOrient3dRelativeBound * permanent;
-      bounded &= lane_bits(permanent >= least[q][h]) << (2 * h) | (0x3u << (2 - 2 * h));
-      in |= lane_bits(dj > ej) << (2 * h);
-      out_j |= lane_bits(-dj > ej) << (2 * h);
+      const Lanes2 ej = kOrient3dRelativeBound * permanent, cj = ej * sign_bound;
+      // on the plane exactly: the coordinate difference is 0 (not the product, which may underflow)
+      const Lanes2 none = {0, 0};
+      const int axis = b_normals.exact[j];
+      const unsigned zero = axis == 0   ? 0u
+                            : axis == 1 ? lane_bits(wx[q][h] == none)
+                            : axis == 2 ? lane_bits(wy[q][h] == none)
+                                        : lane_bits(wz[q][h] == none);
+      bounded &= (lane_bits(permanent >= least[q][h]) | zero) << (2 * h) | (0x3u << (2 - 2 * h));
+      in |= lane_bits(dj > cj) << (2 * h);
+      out_j |= lane_bits(-dj > cj) << (2 * h);
+      on_j |= zero << (2 * h);
       polytope.set_value(2 * h, j, dj[0], ej[0]);
       polytope.set_value(2 * h + 1, j, dj[1], ej[1]);
     }
-    // face j's plane separates (all four certainly outside): empty, whatever the other planes' sides
-    if (out_j == 0xFu && bounded == 0xFu) return true;
+    // face j's plane separates (no vertex certainly inside, all certainly outside or on it): empty, whatever the
+    // other planes' sides (the interiors do not meet)
+    if (in == 0 && (out_j | on_j) == 0xFu && bounded == 0xFu) return true;
     inner |= in << (4 * j);
     outer |= out_j << (4 * j);
+    on |= on_j << (4 * j);
   }
   if (bounded != 0xFu) return false;
-  if ((inner | outer) != 0xFFFFu) return false;  // a side within its bound
+  if ((inner | outer | on) != 0xFFFFu) return false;  // a side within its bound
   for (int j = 0; j < 4; ++j) beyond |= static_cast<unsigned>((outer >> (4 * j) & 0xFu) != 0) << j;
   if (beyond == 0) {  // a in closed b
     out = whole(a, 0);
     return true;
   }
+  // A vertex on a plane that cuts a: the exact clip. On one that does not, the vertex lies on it (its plane set
+  // says so), unless three do: then a's face lies in that plane, which keeps a's bit only (as clip()).
+  unsigned touching[4] = {0, 0, 0, 0};
+  for (int j = 0; j < 4; ++j) {
+    const unsigned on_j = on >> (4 * j) & 0xFu;
+    if (on_j == 0) continue;
+    if (beyond >> j & 1u) return false;
+    if (__builtin_popcount(on_j) < 3) touching[j] = on_j;
+  }
   polytope.start(a);
+  for (int j = 0; j < 4; ++j)
+    for (unsigned t = touching[j]; t != 0; t &= t - 1) polytope.add_plane(__builtin_ctz(t), 4 + j);
   for (int j = 0; j < 4; ++j) {
     if (!(beyond >> j & 1u)) continue;
     const SimplePolytope::Outcome o =

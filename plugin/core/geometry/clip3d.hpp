@@ -94,8 +94,16 @@ struct TetFaces {
 // exact translation of t (translate_exactly) keeps them. Kept for each tetrahedron of a mesh clipped many
 // times (24 doubles a tetrahedron), where forming TetFaces for every pair would repeat them. Plain doubles:
 // an array of them is not cleared when it is made.
+//
+// exact[j] = k + 1: face j's plane is axis-aligned, x_k = c (its three points share coordinate k exactly), and its
+// normal's one nonzero component has a certain sign (beyond orient2d's error bound, 4 eps times the minors'
+// absolute sum); else 0. Then the side of a point x is exactly sign(x_k - c) sign(n_k), zero exactly where x_k == c
+// (the difference of two doubles is 0 only when they are equal), and the estimate (x - p) . n = fl(x_k - c) n_k
+// has that sign unless it underflows: box and extruded fluid meshes, whose solid vertices often lie on their
+// planes, get those sides without the exact clip.
 struct TetNormals {
   double normal[4][3], permanent[4][3];
+  unsigned char exact[4];
   Point3 n(int j) const { return {normal[j][0], normal[j][1], normal[j][2]}; }
   Point3 pn(int j) const { return {permanent[j][0], permanent[j][1], permanent[j][2]}; }
   void set(const Point3 t[4]) {
@@ -109,6 +117,13 @@ struct TetNormals {
       permanent[j][0] = f.pn.x;
       permanent[j][1] = f.pn.y;
       permanent[j][2] = f.pn.z;
+      const int k = f.p.x == f.q.x && f.p.x == f.r.x ? 0 : f.p.y == f.q.y && f.p.y == f.r.y ? 1
+                    : f.p.z == f.q.z && f.p.z == f.r.z ? 2 : -1;
+      // (the bound holds where the minors do not underflow: their absolute sum at least 2^-1000)
+      const bool certain = k >= 0 && permanent[j][k] >= 0x1p-1000 &&
+                           std::fabs(normal[j][k]) > 0x1p-51 * permanent[j][k] && normal[j][(k + 1) % 3] == 0 &&
+                           normal[j][(k + 2) % 3] == 0;
+      exact[j] = static_cast<unsigned char>(certain ? k + 1 : 0);
     }
   }
 };
