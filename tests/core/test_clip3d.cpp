@@ -405,9 +405,14 @@ TEST(Clip3d, FilteredClipperOnAxisAlignedPlanes) {
     for (Point3& v : t) v = {c * v.x - s * v.y, s * v.x + c * v.y, v.z};
     return t;
   };
-  int pieces = 0, touching = 0, mismatches = 0;
+  int pieces = 0, touching = 0, cutting = 0, mismatches = 0;
+  // and two tetrahedra with a vertex on z = 0, two on z = 1 and one on z = 2: the plane z = 1 cuts them through
+  // two of their vertices
+  std::vector<Tet> others = kuhn;
+  others.push_back(positive({Point3{0, 0, 0}, Point3{1, 0, 1}, Point3{0, 1, 1}, Point3{0.2, 0.3, 2}}));
+  others.push_back(positive({Point3{0.5, 0.5, 0}, Point3{1, 0, 1}, Point3{-0.25, 0.75, 1}, Point3{0, 0, 2}}));
   for (int s = 0; s < 4; ++s)
-    for (const Tet& ka : kuhn) {
+    for (const Tet& ka : others) {
       const Tet a = shifted(turned(ka, s & 1 ? 1.1 : 0.3), Point3{0.1, -0.2, 0.5 * double(s >> 1)});
       TetFaces a_faces;
       a_faces.set(a.data());
@@ -435,19 +440,25 @@ TEST(Clip3d, FilteredClipperOnAxisAlignedPlanes) {
                     const Point3 g = p.v[i] - e.v[j];
                     EXPECT_LE(std::max({std::fabs(g.x), std::fabs(g.y), std::fabs(g.z)}), 0x1p-40 * 4);
                   }
-              // a vertex of a on an exact plane of b that does not cut a
-              bool touches = false;
+              // a vertex of a on an exact plane of b that does not cut a, or on one that does
+              bool touches = false, cuts = false;
               for (int i = 0; i < e.n; ++i)
-                for (int j = 0; j < 4; ++j)
-                  touches = touches || (e.planes[i] >> (4 + j) & 1u && normals.exact[j] && !(beyond_exact >> j & 1u) &&
-                                        std::find(a.begin(), a.end(), e.v[i]) != a.end());
+                for (int j = 0; j < 4; ++j) {
+                  const bool on = e.planes[i] >> (4 + j) & 1u && normals.exact[j] &&
+                                  std::find(a.begin(), a.end(), e.v[i]) != a.end();
+                  touches = touches || (on && !(beyond_exact >> j & 1u));
+                  cuts = cuts || (on && (beyond_exact >> j & 1u));
+                }
               touching += touches;
+              cutting += cuts;
             }
     }
-  std::printf("[ clip3d ] axis-aligned lattice: %d pieces, %d with a vertex of a on a plane of b that does not cut it\n",
-              pieces, touching);
+  std::printf("[ clip3d ] axis-aligned lattice: %d pieces, %d with a vertex of a on a plane of b that does not cut it, "
+              "%d on one that does\n",
+              pieces, touching, cutting);
   EXPECT_EQ(mismatches, 0);
-  // these pairs give 352 pieces, 24 of them with such a vertex: counted so that the family cannot lose them
-  EXPECT_GT(pieces, 250);
-  EXPECT_GT(touching, 15);
+  // these pairs give 519 pieces, 32 and 16 of them with such vertices: counted so that the family cannot lose them
+  EXPECT_GT(pieces, 400);
+  EXPECT_GT(touching, 20);
+  EXPECT_GT(cutting, 8);
 }
