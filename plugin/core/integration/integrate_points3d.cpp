@@ -308,6 +308,13 @@ inline Point3 linear_part(const double* j, Point3 v) {
           j[6] * v.x + j[7] * v.y + j[8] * v.z};
 }
 
+// The slope along w of a quadratic map's dX/dxi_i: (H w)_i, H[a][i][k] = d2 X_a / dxi_i dxi_k.
+inline Point3 hessian_along(const double (&h)[3][3][3], int i, Point3 w) {
+  return {h[0][i][0] * w.x + h[0][i][1] * w.y + h[0][i][2] * w.z,
+          h[1][i][0] * w.x + h[1][i][1] * w.y + h[1][i][2] * w.z,
+          h[2][i][0] * w.x + h[2][i][1] * w.y + h[2][i][2] * w.z};
+}
+
 // The band's axis for a face whose plane's preimage has gradient z (grad_xi (n . A)): of the solid's axes (axis,
 // in reference coordinates) the one with the largest |z . axis_a|, the first within 1e-9 of it (both sides of
 // the face, whose n differ by a positive factor and round-off, choose the same), signed so that n . A grows
@@ -340,14 +347,8 @@ double PointIntegrator3::plane_root(const ClippedImage3& image, Point3 n, Point3
   const double r1 = -q0 / q1;
   double q2;
   if (terms.quadratic) {
-    const double(&h)[3][3][3] = terms.hessian;
     Point3 whw;
-    for (int i = 0; i < 3; ++i) {
-      const double wi = coordinate(w, i);
-      whw = whw + wi * Point3{h[0][i][0] * w.x + h[0][i][1] * w.y + h[0][i][2] * w.z,
-                              h[1][i][0] * w.x + h[1][i][1] * w.y + h[1][i][2] * w.z,
-                              h[2][i][0] * w.x + h[2][i][1] * w.y + h[2][i][2] * w.z};
-    }
+    for (int i = 0; i < 3; ++i) whw = whw + coordinate(w, i) * hessian_along(terms.hessian, i, w);
     q2 = 0.5 * dot(n, whw);
   } else {
     q2 = dot(n, reference_position(image, xi + r1 * w) - y) / (r1 * r1);
@@ -381,11 +382,7 @@ bool PointIntegrator3::band_face(const ClippedImage3& image, int kf, int j, int 
   face.quadratic = terms.quadratic;
   face.across = across;
   if (terms.quadratic) {
-    const double(&hessian)[3][3][3] = terms.hessian;
-    for (int i = 0; i < 3; ++i)
-      face.hd[i] = {hessian[0][i][0] * d.x + hessian[0][i][1] * d.y + hessian[0][i][2] * d.z,
-                    hessian[1][i][0] * d.x + hessian[1][i][1] * d.y + hessian[1][i][2] * d.z,
-                    hessian[2][i][0] * d.x + hessian[2][i][1] * d.y + hessian[2][i][2] * d.z};
+    for (int i = 0; i < 3; ++i) face.hd[i] = hessian_along(terms.hessian, i, d);
     face.dhd = d.x * face.hd[0] + d.y * face.hd[1] + d.z * face.hd[2];
     face.eta_dhd = linear_part(integrand_.fluid.inverse_jacobian(kf), face.dhd);
     if (across >= 0) face.across_dhd = linear_part(integrand_.fluid.inverse_jacobian(across), face.dhd);
