@@ -801,15 +801,14 @@ bool filtered_piece(const Point3 a[4], const Point3 b[4], const TetNormals& b_no
     const Point3 n = b_normals.n(j), pn = b_normals.pn(j);
     // an exact plane (TetNormals::exact): the estimate's sign is the side's, 0 exactly on the plane (its value
     // still carries the bound ej, which the crossings' values inherit)
-    const Lanes2 sign_bound = b_normals.exact[j] ? Lanes2{0, 0} : Lanes2{1, 1};
+    const int axis = b_normals.exact[j];
+    const Lanes2 sign_bound = axis ? Lanes2{0, 0} : Lanes2{1, 1}, none = {0, 0};
     unsigned in = 0, out_j = 0, on_j = 0;
     for (int h = 0; h < 2; ++h) {
       const Lanes2 dj = wx[q][h] * n.x + wy[q][h] * n.y + wz[q][h] * n.z;
       const Lanes2 permanent = fx[q][h] * pn.x + fy[q][h] * pn.y + fz[q][h] * pn.z;
       const Lanes2 ej = kOrient3dRelativeBound * permanent, cj = ej * sign_bound;
       // on the plane exactly: the coordinate difference is 0 (not the product, which may underflow)
-      const Lanes2 none = {0, 0};
-      const int axis = b_normals.exact[j];
       const unsigned zero = axis == 0   ? 0u
                             : axis == 1 ? lane_bits(wx[q][h] == none)
                             : axis == 2 ? lane_bits(wy[q][h] == none)
