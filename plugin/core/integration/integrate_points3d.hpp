@@ -18,6 +18,8 @@
 
 namespace dlmfsi {
 
+struct LineRule;
+
 class FluidSide3;
 
 class PointIntegrator3 : public PieceIntegrator3 {
@@ -73,11 +75,62 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // sub-tetrahedron's straight image has no gradient.
   bool band_face(const ClippedImage3& image, int kf, int j, int across, const QuadraticTerms& terms, BandFace& face,
                  Point3& n, double& rise, double& height) const;
-  // The band where it meets the solid's boundary (gather_reference_side, after gather_band): columns from the
-  // solid tetrahedron's boundary faces that add the part of the band no column from a piece's face reaches and
-  // take back the part beyond the solid that those columns covered.
+  // The band where it meets the solid tetrahedron's faces (gather_reference_side, after gather_band): columns
+  // from its faces that add the part of the band no column from a piece's face in it reaches and take back the
+  // part beyond the tetrahedron that those columns covered, so that each solid tetrahedron integrates the band
+  // inside itself with its own polynomials.
   void gather_side_band(const ClippedImage3& image, int kf, const Piece3& piece, const Point3* xi_corner,
                         double solid_det, const QuadraticTerms& terms);
+  // gather_side_band's piece: the rules of its lines, kf's corners, the face of the solid tetrahedron T each face
+  // of the sub-tetrahedron lies on (on_face[i] for the face opposite its corner i, or -1), and the face plane of kf
+  // that holds the straight image of the face of T being swept (in_plane, or -1).
+  struct SideContext {
+    SideContext(const ClippedImage3& image_, int kf_, const Piece3& piece_, const Point3* xi_corner_,
+                double solid_det_, const QuadraticTerms& terms_)
+        : image(image_), kf(kf_), piece(piece_), xi_corner(xi_corner_), solid_det(solid_det_), terms(terms_) {}
+    const ClippedImage3& image;
+    int kf;
+    const Piece3& piece;
+    const Point3* xi_corner;
+    double solid_det;
+    const QuadraticTerms& terms;
+    int on_face[4] = {-1, -1, -1, -1};
+    Point3 corner[4];
+    const LineRule* along_trace = nullptr;
+    const LineRule* across_trace = nullptr;
+    const LineRule* along_edge = nullptr;
+    Point3 edge_hessians[6];  // e^T H e along the sub-tetrahedron's six edges e (a quadratic map)
+    int in_plane = -1;
+  };
+  // One plane of kf swept on a face sigma of T: its columns (face), outward normal n, a point y of it (in the
+  // image's coordinates) and dir, the unit ascent of n . A_T within sigma (in xi).
+  struct SideLine {
+    int j = -1, across = -1;
+    BandFace face;
+    Point3 n, y, dir;
+    double reach = -1;  // band_may_reach's bound on |n . (X - A)|, on first use
+  };
+  // An edge of T through a point (edge_line): the line's direction along, the far corner's barycentric s0 at the
+  // point, n . X - c = q0 + q1 tau + q2 tau^2 along it and its roots, the sub-tetrahedron's part [ta, tb] with n .
+  // A - c from qa to qb there and 0 at tau_p.
+  struct EdgeLine {
+    int c1 = -1, roots = 0;
+    Point3 along;
+    double s0, q0, q1, q2, root[2], ta, tb, qa, qb, tau_p;
+    // The first of Q's crossings, P's (unless from_p: the start is P's) and the part's end from t in direction
+    // (+1, -1); at_p when it is P's.
+    double end(double t, int direction, bool& at_p, bool from_p) const;
+  };
+  bool side_line(const SideContext& c, int sigma, int j, SideLine& line) const;
+  bool far_lacks(const SideContext& c, int j) const;
+  bool band_may_reach(const SideContext& c, SideLine& line, Point3 a, Point3 b) const;
+  void side_trace(const SideContext& c, int f, int sigma, int u, int v, int j, const SideLine& line);
+  bool edge_line(const SideContext& c, Point3 xi0, int sigma, int edge_face, const SideLine& line, EdgeLine& e) const;
+  void side_edge_component(const SideContext& c, int sigma, int edge_face, Point3 xi0, const SideLine& line,
+                           bool far_side);
+  void side_edge_local(const SideContext& c, int sigma, int edge_face, int u, int v, const SideLine& line);
+  void side_sweep(const SideContext& c, int sigma, const SideLine& line, const LineRule& along, Point3 y, Point3 p0,
+                  Point3 edge, double t0, double t1, Point3 w, double side, double sign);
   // The root nearest 0 of n . (X(xi + r w) - y) (X = x and dX/dr = slope at xi), quadratic in r for a P2 map
   // (terms: its hessian); NaN where it has none.
   double plane_root(const ClippedImage3& image, Point3 n, Point3 y, Point3 xi, Point3 x, Point3 slope, Point3 w,

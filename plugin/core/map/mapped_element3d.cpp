@@ -45,10 +45,6 @@ void MappedTet::prepare(const Mesh3& solid_mesh, const SolidMap3& map, int kk) {
     if (o < 0 && (affine || planar)) throw inverts();
     if (!affine) check_fold(*this);
   }
-  // read by the curved images' band alone (the adjacency, in the mesh's order, is not read for affine ones)
-  boundary_faces = 0;
-  if (!affine && static_cast<int>(solid_mesh.neighbours.size()) == solid_mesh.size())
-    for (int i = 0; i < 4; ++i) boundary_faces |= static_cast<unsigned>(solid_mesh.neighbours[k][i] < 0) << i;
   if (affine) {
     // dX/ds = [image edges] [solid edges]^-1
     const Point3 f[3] = {f1, f2, f3};

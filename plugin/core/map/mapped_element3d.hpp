@@ -18,9 +18,6 @@ class MappedTet : public TetrahedronMap {
   double nonlinearity = 0;
   MapValue3 affine_value;   // for affine tetrahedra: X at the first corner and the constant jacobian
   double affine_det = 0;    // det of that jacobian (> 0)
-  // Bit i: the face opposite corner i (lambda_i = 0 in reference coordinates) lies on the solid mesh's boundary
-  // (no tetrahedron across); set for non-affine maps only, none when the mesh carries no adjacency.
-  unsigned boundary_faces = 0;
 
   // Fits X (TetrahedronMap::fit), checks the corner images (finite, positively oriented, not flat: exact
   // predicates), classifies the map and certifies that it does not fold (fold3d.hpp); throws Error naming
