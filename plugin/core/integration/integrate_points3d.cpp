@@ -388,6 +388,7 @@ bool PointIntegrator3::band_face(const ClippedImage3& image, int kf, int j, int 
   const Point3 z = (1 / ex_det) * (w.x * cross(ex[1], ex[2]) + w.y * cross(ex[2], ex[0]) + w.z * cross(ex[0], ex[1]));
   const double grad = std::sqrt(dot(z, z));
   if (!(grad > 0)) return false;
+  face.grad = z;
   const Point3 axis[3] = {mt.reference_direction(0), mt.reference_direction(1), mt.reference_direction(2)};
   const Point3 d = column_axis(z, axis, rise);  // outward: n . A grows along d
   height = rise / grad;                         // d . nu: a column's height per unit of l
@@ -593,7 +594,7 @@ void PointIntegrator3::gather_side_band(const ClippedImage3& image, int kf, cons
         if (known[sigma][j] < 0) continue;
         SideLine& line = lines[sigma][j];
         if (trace)
-          side_trace(c, f, sigma, u, v, j, line);
+          side_trace(c, sigma, u, v, j, line);
         else if (band_may_reach(c, line, piece.v[u], piece.v[v]))
           side_edge_local(c, sigma, edge_face, u, v, line);
       }
@@ -653,20 +654,17 @@ bool PointIntegrator3::far_lacks(const SideContext& c, int j) const {
   return true;
 }
 
-// P's trace (u, v) on sigma: the lines within sigma into the piece's side (its vertex farthest from the edge's
-// line), and into the other side where the piece there lacks the plane (far_lacks). The band's jump there is
+// P's trace (u, v) on sigma: the lines within sigma into the piece's side (kf's, where n . A falls), and into the
+// other side where the piece there lacks the plane (far_lacks). The band's jump there is
 // still f_across - f_kf (the jumps add along any path), and the lines go the other way from P: the opposite
 // sign. Then, where the trace ends on an edge of T, the band's component along that edge (side_edge_component).
-void PointIntegrator3::side_trace(const SideContext& c, int f, int sigma, int u, int v, int j, const SideLine& line) {
+void PointIntegrator3::side_trace(const SideContext& c, int sigma, int u, int v, int j, const SideLine& line) {
   const Piece3& piece = c.piece;
-  const Point3 xu = c.xi_corner[u], edge = c.xi_corner[v] - xu, nu = barycentric_gradient(sigma);
-  const Point3 normal = cross(edge, nu);  // in sigma
-  double side = 0;
-  for (int b = piece.face_start[f]; b < piece.face_start[f + 1]; ++b) {
-    const double t = dot(c.xi_corner[piece.face_index[b]] - xu, normal);
-    side = std::fabs(t) > std::fabs(side) ? t : side;
-  }
-  side *= dot(line.dir, normal);
+  const Point3 xu = c.xi_corner[u], edge = c.xi_corner[v] - xu;
+  // kf's side of the trace along line.dir: where n . A falls (A the sub-tetrahedron's straight image), from its
+  // gradient, not from the piece's corners, which a sliver of a piece (a face an ulp off a fluid plane, the fluid
+  // edge in it between two traces) puts on either side by rounding
+  const double side = -dot(line.face.grad, line.dir);
   side_sweep(c, sigma, line, *c.along_trace, piece.v[u], xu, edge, 0, 1, line.dir, side, 1);
   const bool far = far_lacks(c, j);
   if (far) side_sweep(c, sigma, line, *c.along_trace, piece.v[u], xu, edge, 0, 1, line.dir, -side, -1);

@@ -67,6 +67,7 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // the latter in the reference coordinates of kf and of the fluid tetrahedron across (-1: none).
   struct BandFace {
     Point3 d, hd[3], dhd, eta_dhd, across_dhd;
+    Point3 grad;  // grad_xi (n . A) of the sub-tetrahedron's straight image
     bool quadratic = false;
     int across = -1;
   };
@@ -124,7 +125,7 @@ class PointIntegrator3 : public PieceIntegrator3 {
   bool side_line(const SideContext& c, int sigma, int j, SideLine& line) const;
   bool far_lacks(const SideContext& c, int j) const;
   bool band_may_reach(const SideContext& c, SideLine& line, Point3 a, Point3 b) const;
-  void side_trace(const SideContext& c, int f, int sigma, int u, int v, int j, const SideLine& line);
+  void side_trace(const SideContext& c, int sigma, int u, int v, int j, const SideLine& line);
   bool edge_line(const SideContext& c, Point3 xi0, int sigma, int edge_face, const SideLine& line, EdgeLine& e) const;
   void side_edge_component(const SideContext& c, int sigma, int edge_face, Point3 xi0, const SideLine& line,
                            bool far_side);
