@@ -315,6 +315,13 @@ inline Point3 hessian_along(const double (&h)[3][3][3], int i, Point3 w) {
           h[2][i][0] * w.x + h[2][i][1] * w.y + h[2][i][2] * w.z};
 }
 
+// A quadratic map's second derivative along w: w^T H w = sum_i w_i (H w)_i.
+inline Point3 hessian_twice(const double (&h)[3][3][3], Point3 w) {
+  Point3 whw;
+  for (int i = 0; i < 3; ++i) whw = whw + coordinate(w, i) * hessian_along(h, i, w);
+  return whw;
+}
+
 // The band's axis for a face whose plane's preimage has gradient z (grad_xi (n . A)): of the solid's axes (axis,
 // in reference coordinates) the one with the largest |z . axis_a|, the first within 1e-9 of it (both sides of
 // the face, whose n differ by a positive factor and round-off, choose the same), signed so that n . A grows
@@ -361,9 +368,7 @@ double PointIntegrator3::plane_root(const ClippedImage3& image, Point3 n, Point3
   if (!(q1 != 0)) return std::numeric_limits<double>::quiet_NaN();
   double q2;
   if (terms.quadratic) {
-    Point3 whw;
-    for (int i = 0; i < 3; ++i) whw = whw + coordinate(w, i) * hessian_along(terms.hessian, i, w);
-    q2 = 0.5 * dot(n, whw);
+    q2 = 0.5 * dot(n, hessian_twice(terms.hessian, w));
   } else {
     const double r1 = -q0 / q1;
     q2 = dot(n, reference_position(image, xi + r1 * w) - y) / (r1 * r1);
@@ -555,9 +560,7 @@ void PointIntegrator3::gather_side_band(const ClippedImage3& image, int kf, cons
   if (terms.quadratic)  // e^T H e along the sub-tetrahedron's edges (band_may_reach)
     for (int i = 0, m = 0; i < 4; ++i)
       for (int k = i + 1; k < 4; ++k, ++m) {
-        const Point3 e = image.sub_xi[k] - image.sub_xi[i];
-        for (int l = 0; l < 3; ++l)
-          c.edge_hessians[m] = c.edge_hessians[m] + coordinate(e, l) * hessian_along(terms.hessian, l, e);
+        c.edge_hessians[m] = hessian_twice(terms.hessian, image.sub_xi[k] - image.sub_xi[i]);
       }
   SideLine lines[4][4];  // per face of T and plane of kf, formed on first use (known: 1, or -1 where it has none)
   signed char known[4][4] = {};
@@ -647,8 +650,7 @@ bool PointIntegrator3::far_lacks(const SideContext& c, int j) const {
   const int p = c.in_plane;
   for (int g = 0; g < 4; ++g) {
     bool all = true;
-    for (int m = 1; m < 4 && all; ++m)
-      all = orient3d(c.corner[(p + 1) & 3], c.corner[(p + 2) & 3], c.corner[(p + 3) & 3], corner[(g + m) & 3]) == 0;
+    for (int m = 1; m < 4 && all; ++m) all = in_face_plane(c.corner, p, corner[(g + m) & 3]);
     if (all) return false;
   }
   return true;
@@ -700,9 +702,7 @@ bool PointIntegrator3::edge_line(const SideContext& c, Point3 xi0, int sigma, in
   reference_value(c.image, xi0, x, D);
   e.q0 = dot(line.n, x - line.y);
   e.q1 = dot(line.n, e.along.x * D[0] + e.along.y * D[1] + e.along.z * D[2]);
-  Point3 ehe;
-  for (int i = 0; i < 3; ++i) ehe = ehe + coordinate(e.along, i) * hessian_along(c.terms.hessian, i, e.along);
-  e.q2 = 0.5 * dot(line.n, ehe);
+  e.q2 = 0.5 * dot(line.n, hessian_twice(c.terms.hessian, e.along));
   e.roots = 0;
   if (e.q2 != 0) {
     const double disc = e.q1 * e.q1 - 4 * e.q0 * e.q2;
