@@ -194,12 +194,14 @@ double ExactMethod3::clip(const ClippedImage3& image, const Point3 img[4], Local
       local.origin = origin;
       integrator.start(local);
       for (const auto& [kf, piece] : local_pieces_) add_piece(local, kf, piece);
+      integrator.finish(local, block);
       return volume - covered;
     }
     hint_ = hint;  // in absolute coordinates, from the same start
   }
   integrator.start(image);
   search_.for_each_piece(img, hint_, [&](int kf, const Piece3& piece) { add_piece(image, kf, piece); });
+  integrator.finish(image, block);
   return volume - covered;
 }
 

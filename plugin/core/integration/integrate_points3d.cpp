@@ -13,6 +13,7 @@
 #include "fe/rules.hpp"
 #include "fe/lattice3d.hpp"
 #include "fe/weighted_sum.hpp"
+#include "integration/reference_tet.hpp"
 
 namespace dlmfsi {
 
@@ -36,25 +37,51 @@ double PointIntegrator3::integrate(const ClippedImage3& image, int kf, const Pie
 }
 
 void PointIntegrator3::add_across(const MappedTet& mt, LocalBlock& block) {
-  // by fluid tetrahedron, in the order met (a piece has at most 4 face planes)
-  while (!across_.empty()) {
-    const int kf = across_.front().kf;
+  // by fluid tetrahedron, in the order first met: the tetrahedra numbered as met, the points counted per
+  // tetrahedron and laid out in that order (a counting sort)
+  across_tets_.clear();
+  across_group_.resize(across_.size());
+  const size_t tets = static_cast<size_t>(fluid_->mesh().size());
+  if (tet_stamp_.size() != tets) {
+    tet_stamp_.assign(tets, 0);
+    tet_group_.assign(tets, 0);
+  }
+  if (++tet_epoch_ == 0) {
+    std::fill(tet_stamp_.begin(), tet_stamp_.end(), 0);
+    tet_epoch_ = 1;
+  }
+  for (size_t i = 0; i < across_.size(); ++i) {
+    const int kf = across_[i].kf;
+    if (tet_stamp_[kf] != tet_epoch_) {
+      tet_stamp_[kf] = tet_epoch_;
+      tet_group_[kf] = static_cast<int>(across_tets_.size());
+      across_tets_.push_back(kf);
+    }
+    across_group_[i] = tet_group_[kf];
+  }
+  across_start_.assign(across_tets_.size() + 1, 0);
+  for (int g : across_group_) ++across_start_[g + 1];
+  for (size_t g = 0; g < across_tets_.size(); ++g) across_start_[g + 1] += across_start_[g];
+  across_order_.resize(across_.size());
+  {
+    std::vector<int>& next = across_fill_;
+    next.assign(across_start_.begin(), across_start_.end() - 1);
+    for (size_t i = 0; i < across_.size(); ++i) across_order_[next[across_group_[i]]++] = static_cast<int>(i);
+  }
+  for (size_t g = 0; g < across_tets_.size(); ++g) {
+    const int kf = across_tets_[g];
     clear_points();
-    size_t kept = 0;
-    for (const AcrossPoint& a : across_) {
-      if (a.kf != kf) {
-        across_[kept++] = a;
-        continue;
-      }
+    for (int k = across_start_[g]; k < across_start_[g + 1]; ++k) {
+      const AcrossPoint& a = across_[across_order_[k]];
       eta_.push_back(a.eta);
       xi_.push_back(a.xi);
       weight_.push_back(a.weight);
       if (point_jacobians_) jac_.push_back(across_jac_[a.jac]);
     }
-    across_.resize(kept);
     block.enter_fluid_element(fluid_->dofs(kf));
     add_gathered(mt, kf, block);
   }
+  across_.clear();
 }
 
 void PointIntegrator3::add_points(const MappedTet& mt, int kf, const PointData* points, int n, LocalBlock& block) {
@@ -134,23 +161,6 @@ double PointIntegrator3::gather(const ClippedImage3& image, int kf, const Piece3
     }
   });
   return volume;
-}
-
-// Inline (used here only): a call per point through the plugin's symbol table cost 12 % of a curved call.
-inline void PointIntegrator3::reference_value(const ClippedImage3& image, Point3 xi, Point3& x, Point3 (&d)[3]) const {
-  const MappedTet& mt = image.tetrahedron;
-  if (image.origin != Point3()) {  // X(xi) - origin from the map's displacement, to the image's own precision
-    mt.displacement(xi, x, d);
-    x = x + (mt.origin() - image.origin);
-  } else {
-    mt.reference_derivatives(xi, x, d);
-  }
-}
-
-inline Point3 PointIntegrator3::reference_position(const ClippedImage3& image, Point3 xi) const {
-  const MappedTet& mt = image.tetrahedron;
-  if (image.origin != Point3()) return mt.displacement_position(xi) + (mt.origin() - image.origin);
-  return mt.position(xi);
 }
 
 inline void PointIntegrator3::add_jacobian(const ClippedImage3& image, const Point3 (&d)[3]) {
@@ -257,7 +267,7 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
     }
   });
   gather_band(image, kf, piece, xi_corner, solid_det, terms);
-  gather_side_band(image, kf, piece, xi_corner, solid_det, terms);
+  note_side_piece(kf, piece);
   return volume;
 }
 
@@ -308,20 +318,6 @@ inline Point3 linear_part(const double* j, Point3 v) {
           j[6] * v.x + j[7] * v.y + j[8] * v.z};
 }
 
-// The slope along w of a quadratic map's dX/dxi_i: (H w)_i, H[a][i][k] = d2 X_a / dxi_i dxi_k.
-inline Point3 hessian_along(const double (&h)[3][3][3], int i, Point3 w) {
-  return {h[0][i][0] * w.x + h[0][i][1] * w.y + h[0][i][2] * w.z,
-          h[1][i][0] * w.x + h[1][i][1] * w.y + h[1][i][2] * w.z,
-          h[2][i][0] * w.x + h[2][i][1] * w.y + h[2][i][2] * w.z};
-}
-
-// A quadratic map's second derivative along w: w^T H w = sum_i w_i (H w)_i.
-inline Point3 hessian_twice(const double (&h)[3][3][3], Point3 w) {
-  Point3 whw;
-  for (int i = 0; i < 3; ++i) whw = whw + coordinate(w, i) * hessian_along(h, i, w);
-  return whw;
-}
-
 // The band's axis for a face whose plane's preimage has gradient z (grad_xi (n . A)): of the solid's axes (axis,
 // in reference coordinates) the one with the largest |z . axis_a|, the first within 1e-9 of it (both sides of
 // the face, whose n differ by a positive factor and round-off, choose the same), signed so that n . A grows
@@ -334,54 +330,18 @@ Point3 column_axis(Point3 z, const Point3 (&axis)[3], double& rise) {
   return (g[a] > 0 ? 1.0 : -1.0) * axis[a];
 }
 
-// lambda_i and grad lambda_i on the reference tetrahedron (corner 0 at the origin, corner i at e_i).
-inline double barycentric(Point3 xi, int i) {
-  return i == 0 ? 1 - xi.x - xi.y - xi.z : i == 1 ? xi.x : i == 2 ? xi.y : xi.z;
-}
-inline Point3 barycentric_gradient(int i) {
-  return i == 0 ? Point3{-1, -1, -1} : i == 1 ? Point3{1, 0, 0} : i == 2 ? Point3{0, 1, 0} : Point3{0, 0, 1};
-}
-
-// The root nearest 0 of q0 + q1 r + q2 r^2, NaN where there is none (q1 = 0, or no real root: the plane's preimage
-// is not met), in the form that keeps its digits when q2 r is small.
-inline double nearest_root(double q0, double q1, double q2) {
-  if (q0 == 0) return 0;
-  if (!(q1 != 0)) return std::numeric_limits<double>::quiet_NaN();
-  const double disc = q1 * q1 - 4 * q0 * q2;
-  if (!(disc >= 0)) return std::numeric_limits<double>::quiet_NaN();
-  return -2 * q0 / (q1 + std::copysign(std::sqrt(disc), q1));
-}
-
-// p lies in the plane of face g (opposite corner g) of the tetrahedron with these corners, exactly.
-inline bool in_face_plane(const Point3 (&corner)[4], int g, Point3 p) {
-  return orient3d(corner[(g + 1) & 3], corner[(g + 2) & 3], corner[(g + 3) & 3], p) == 0;
-}
-
 }  // namespace
 
-double PointIntegrator3::plane_root(const ClippedImage3& image, Point3 n, Point3 y, Point3 xi, Point3 x, Point3 slope,
-                                    Point3 w, const QuadraticTerms& terms) const {
-  // q(r) = n . (X(xi + r w) - y) = q0 + q1 r + q2 r^2: a quadratic map's q2 = n . (w^T H w) / 2, else q2 from q at
-  // the first-order step
-  const double q0 = dot(n, x - y), q1 = dot(n, slope);
-  if (q0 == 0) return 0;
-  if (!(q1 != 0)) return std::numeric_limits<double>::quiet_NaN();
-  double q2;
-  if (terms.quadratic) {
-    q2 = 0.5 * dot(n, hessian_twice(terms.hessian, w));
-  } else {
-    const double r1 = -q0 / q1;
-    q2 = dot(n, reference_position(image, xi + r1 * w) - y) / (r1 * r1);
-  }
-  return nearest_root(q0, q1, q2);
+Point3 PointIntegrator3::face_normal(int kf, int j) const {
+  const double* inv = integrand_.fluid.inverse_jacobian(kf);  // rows: grad_x xi_1, xi_2, xi_3 of kf
+  const Point3 r1{inv[0], inv[1], inv[2]}, r2{inv[3], inv[4], inv[5]}, r3{inv[6], inv[7], inv[8]};
+  return j == 0 ? r1 + r2 + r3 : -1.0 * (j == 1 ? r1 : j == 2 ? r2 : r3);
 }
 
 bool PointIntegrator3::band_face(const ClippedImage3& image, int kf, int j, int across, const QuadraticTerms& terms,
                                   BandFace& face, Point3& n, double& rise, double& height) const {
   const MappedTet& mt = image.tetrahedron;
-  const double* inv = integrand_.fluid.inverse_jacobian(kf);  // rows: grad_x xi_1, xi_2, xi_3 of kf
-  const Point3 r1{inv[0], inv[1], inv[2]}, r2{inv[3], inv[4], inv[5]}, r3{inv[6], inv[7], inv[8]};
-  n = j == 0 ? r1 + r2 + r3 : -1.0 * (j == 1 ? r1 : j == 2 ? r2 : r3);
+  n = face_normal(kf, j);
   // dy/dxi of the straight image: E_y E_xi^-1 (edges from corner 0); grad_xi (n . A) = E_xi^-T E_y^T n
   const Point3 ey[3] = {image.sub_y[1] - image.sub_y[0], image.sub_y[2] - image.sub_y[0],
                         image.sub_y[3] - image.sub_y[0]};
@@ -421,9 +381,10 @@ bool PointIntegrator3::band_face(const ClippedImage3& image, int kf, int j, int 
 // Columns along a common axis tile the region between the straight images' surface and the true one whatever the
 // sub-tetrahedra and solid tetrahedra it crosses, so that a kink along one fluid plane is integrated to round-off. A
 // column may go on beyond the solid tetrahedron, with its polynomials (which may kink across the face);
-// gather_side_band takes that part back and adds the part of the band inside the tetrahedron that no column from its
-// pieces' faces reaches. What is left, where the integrand jumps: t^2 per unit length where two fluid faces meet (each
-// plane's columns end at the other's straight image, not at its true preimage), unless the jumps across them add up.
+// the side band (side_band3d.cpp) takes that part back and adds the part of the band inside the tetrahedron that no
+// column from its pieces' faces reaches. What is left, where the integrand jumps: t^2 per unit length where two fluid
+// faces meet (each plane's columns end at the other's straight image, not at its true preimage), unless the jumps
+// across them add up.
 // Each column adds f_K and, with the opposite sign, f_K' of the fluid tetrahedron across, at the same points: the
 // band's integral of f_K - f_K', to round-off where f does not jump. Where the face is inside the sub-tetrahedron's
 // image, one of the two pieces takes the columns for both; where it lies on the sub-tetrahedron's boundary, each side
@@ -433,7 +394,7 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
                                    double solid_det, const QuadraticTerms& terms) {
   // a quadratic map along a column: X(xi + l d) = X + l D d + l^2 (d^T H d) / 2, D(xi + l d) = D + l H d; where
   // the face points take X alone, their slopes from dX/dxi = D_corner + H xi
-  const bool quadratic = terms.quadratic, alone = terms.alone;
+  const bool alone = terms.alone;
   const double(&hessian)[3][3][3] = terms.hessian;
   const Point3(&D_corner)[3] = terms.d_corner;
   // The face points must not depend on the side: the pieces' vertices are not numbered in any order
@@ -491,25 +452,8 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
           reference_value(image, xi, x0, D);
           dd = d.x * D[0] + d.y * D[1] + d.z * D[2];
         }
-        // q(l) = c0 + c1 l + c2 l^2 along the column: c0 and c1 = n . dX/dl at xi; c2 = n . d^T H d / 2 for a
-        // quadratic map, else from q at the first-order step l1 = -c0 / c1 (where c0 + c1 l1 = 0); where the
-        // map's slope is far off the straight image's, that slope alone
-        const double c0 = dot(n, x0 - y);
-        if (c0 == 0) continue;
-        const double jn = dot(n, dd);
-        double c1 = rise, c2 = 0;
-        if (jn > 0.5 * rise) {
-          c1 = jn;
-          if (quadratic) {
-            c2 = 0.5 * dot(n, face.dhd);
-          } else {
-            const double l1 = -c0 / c1;
-            c2 = dot(n, reference_position(image, xi + l1 * d) - y) / (l1 * l1);
-          }
-        }
-        const double disc = c1 * c1 - 4 * c0 * c2;
-        // the root continuous with -c0 / c1 as c2 -> 0, in the form without cancellation
-        const double root = disc >= 0 ? -2 * c0 / (c1 + std::sqrt(disc)) : -c0 / c1;
+        const double root = column_root(image, face, n, y, xi, x0, dd, rise);
+        if (root == 0) continue;
         if (on_boundary && !(root < 0)) continue;
         add_column(image, kf, face, xi, x0, dd, D, root, root * height * area * rp.weight);
       }
@@ -517,336 +461,12 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
   }
 }
 
-// The band where it meets the faces of the solid tetrahedron T: T integrates the band inside itself, with its own
-// polynomials, whatever its neighbours do. Along a column's line the band is the interval between a fluid plane's
-// straight preimage P (under the sub-tetrahedra's affine interpolants) and its true one Q. gather_band's columns
-// start on P inside T and go on past T's faces (so that their integrand stays smooth); where P lies beyond a face
-// sigma of T and Q inside, the part between sigma and Q has no column. Those lines cross sigma where n . A - c and
-// n . X - c have opposite signs (A: the straight image, X: the map): a region of sigma bounded by P's trace (an
-// edge, in the fluid plane, of a piece's face on sigma), Q's (a conic) and sigma's edges. It is taken in lines
-// within sigma along w (the steepest descent, or ascent, in sigma of n . A_T, A_T the affine interpolant of T's
-// corner images: the same for every sub-tetrahedron) from P's trace to Q's, and from each of their points a column
-// along the band's axis d to Q: a column into T adds the band there (f_across - f_kf), one out of T takes back what
-// gather_band's columns added beyond sigma. The lines within sigma that leave it across an edge of sigma are taken
-// back, and the part of the region that no line from P's trace reaches is added, by lines from that edge
-// (side_edge_component, side_edge_local). Across an interior face the neighbour does the same on its side.
-void PointIntegrator3::gather_side_band(const ClippedImage3& image, int kf, const Piece3& piece,
-                                        const Point3* xi_corner, double solid_det, const QuadraticTerms& terms) {
-  SideContext c{image, kf, piece, xi_corner, solid_det, terms};
-  bool any = false;
-  for (int sub = 0; sub < 4; ++sub) {  // the sub-tetrahedron's face opposite its corner sub lies on T's face i
-    c.on_face[sub] = -1;
-    for (int i = 0; i < 4 && c.on_face[sub] < 0; ++i) {
-      bool all = true;
-      for (int m = 0; m < 4 && all; ++m) all = m == sub || barycentric(image.sub_xi[m], i) == 0;
-      if (all) c.on_face[sub] = i;
-    }
-    any = any || c.on_face[sub] >= 0;
-  }
-  if (!any) return;
-  // The lines' rules: of degree 2 p + 4 along a trace and p + 2 across it (p the band's degree), p + 4 along an
-  // edge of T, where the band's component is as short as the band is thick. The roots make the integrands smooth,
-  // not polynomial; on a whole solid tetrahedron (subdivide 0), whose band is thickest, two more. Measured: on
-  // curved_per_tet3d.edp's tangent map (the largest error over its tetrahedra alone at subdivide 0 / 1) 1.2e-13 /
-  // 6.2e-16, against 5.0e-12 / 1.2e-13 with 2 p + 2 along a trace and 1.2e-13 / 5.1e-13 with p across it; on
-  // coupling3d_curved_random.edp (P2 x P2 at subdivide 0) 2.4e-14, against 1.6e-13 with two less along an edge.
-  bool whole = true;
-  for (int i = 0; i < 4 && whole; ++i) whole = barycentric(image.sub_xi[i], i) == 1;
-  const int extra = whole ? 4 : 2;
-  c.along_trace = &line_rule(2 * image.degree + 2 + extra);
-  c.across_trace = &line_rule(image.degree + extra);
-  c.along_edge = &line_rule(image.degree + 2 + extra);
-  if (fluid_) fluid_->mesh().corners(kf, c.corner);
-  if (terms.quadratic)  // e^T H e along the sub-tetrahedron's edges (band_may_reach)
-    for (int i = 0, m = 0; i < 4; ++i)
-      for (int k = i + 1; k < 4; ++k, ++m) {
-        c.edge_hessians[m] = hessian_twice(terms.hessian, image.sub_xi[k] - image.sub_xi[i]);
-      }
-  SideLine lines[4][4];  // per face of T and plane of kf, formed on first use (known: 1, or -1 where it has none)
-  signed char known[4][4] = {};
-  for (int f = 0; f < piece.faces; ++f) {
-    const int s = piece.face_start[f], e = piece.face_start[f + 1];
-    unsigned common = 0xFFu;
-    for (int i = s; i < e; ++i) common &= piece.planes[piece.face_index[i]];
-    const int sub = (common & 0xFu) != 0 ? __builtin_ctz(common & 0xFu) : -1;
-    const int sigma = sub >= 0 ? c.on_face[sub] : -1;
-    if (sigma < 0) continue;
-    // sigma's straight image in a face plane of kf: then a trace on sigma of another plane of kf runs along a fluid
-    // edge, and the piece across it may lie in a fluid tetrahedron without that plane (far_lacks)
-    c.in_plane = -1;
-    if (fluid_)
-      for (int g = 0; g < 4 && c.in_plane < 0; ++g) {
-        bool all = true;
-        for (int m = 1; m < 4 && all; ++m) all = in_face_plane(c.corner, g, image.sub_y[(sub + m) & 3]);
-        if (all) c.in_plane = g;
-      }
-    for (int a = s; a < e; ++a) {
-      const int u = piece.face_index[a], v = piece.face_index[a + 1 < e ? a + 1 : s];
-      const unsigned shared = piece.planes[u] & piece.planes[v], fluid_planes = shared >> 4 & 0xFu;
-      // the edge on T's edge (sigma and edge_face): on a sub-tetrahedron's face on another face of T
-      int edge_face = -1;
-      for (unsigned b = shared & 0xFu & ~(common & 0xFu); b != 0; b &= b - 1) {
-        const int tf = c.on_face[__builtin_ctz(b)];
-        if (tf >= 0 && tf != sigma) edge_face = tf;
-      }
-      if (fluid_planes == 0 && edge_face < 0) continue;
-      for (int j = 0; j < 4; ++j) {
-        const bool trace = fluid_planes >> j & 1u;  // on a fluid plane (two: along a fluid edge, P's trace of each)
-        if (!trace && (edge_face < 0 || !terms.quadratic || !fluid_)) continue;
-        if (known[sigma][j] == 0) known[sigma][j] = side_line(c, sigma, j, lines[sigma][j]) ? 1 : -1;
-        if (known[sigma][j] < 0) continue;
-        SideLine& line = lines[sigma][j];
-        if (trace)
-          side_trace(c, sigma, u, v, j, line);
-        else if (band_may_reach(c, line, piece.v[u], piece.v[v]))
-          side_edge_local(c, sigma, edge_face, u, v, line);
-      }
-    }
-  }
-}
-
-bool PointIntegrator3::side_line(const SideContext& c, int sigma, int j, SideLine& line) const {
-  const MappedTet& mt = c.image.tetrahedron;
-  line.j = j;
-  line.across = fluid_ ? fluid_->mesh().neighbours[c.kf][j] : -1;
-  double rise, height;
-  if (!band_face(c.image, c.kf, j, line.across, c.terms, line.face, line.n, rise, height)) return false;
-  const Point3 nu = barycentric_gradient(sigma);  // sigma's normal in xi, into T
-  const Point3 g{dot(line.n, mt.image[1] - mt.image[0]), dot(line.n, mt.image[2] - mt.image[0]),
-                 dot(line.n, mt.image[3] - mt.image[0])};  // grad_xi (n . A_T)
-  Point3 dir = g - (dot(g, nu) / dot(nu, nu)) * nu;       // grad_xi (n . A_T) within sigma
-  const double length = std::sqrt(dot(dir, dir));
-  if (!(length > 0)) return false;
-  line.dir = (1 / length) * dir;
-  line.y = c.corner[j == 0 ? 1 : 0] - c.image.origin;  // a point of the plane, in the image's coordinates (as X)
-  return true;
-}
-
-// Whether X may cross the plane on the segment (a, b) of the sub-tetrahedron's straight image, inside kf (n . (A -
-// y) <= 0): for a quadratic map n . (X - A) = -1/2 sum_{i<k} lambda_i lambda_k e_ik^T H_n e_ik (e_ik the
-// sub-tetrahedron's edges in xi, H_n the hessian of n . X), so |n . (X - A)| <= 3/16 max |e^T H_n e|; with twice
-// that and a margin for the piece's rounded corners, a segment deeper inside has no band.
-bool PointIntegrator3::band_may_reach(const SideContext& c, SideLine& line, Point3 a, Point3 b) const {
-  if (line.reach < 0) {
-    double m = 0;
-    for (const Point3& ehe : c.edge_hessians) m = std::max(m, std::fabs(dot(line.n, ehe)));
-    line.reach = 2 * (3.0 / 16) * m;
-  }
-  const Point3 ya = a - line.y, yb = b - line.y;
-  const double margin = line.reach + 1e-12 * std::sqrt(dot(line.n, line.n) * (dot(ya, ya) + dot(yb, yb)));
-  return std::max(dot(line.n, ya), dot(line.n, yb)) >= -margin;
-}
-
-// Where sigma's straight image lies in kf's face plane in_plane, the traces of kf's other planes on it run along
-// fluid edges; across one, sigma's image lies in the fluid tetrahedron on the other side of that edge. When the
-// neighbour across plane j has no face in in_plane, that tetrahedron is not it and lacks plane j: nobody else
-// sweeps the band of plane j beyond the trace.
-bool PointIntegrator3::far_lacks(const SideContext& c, int j) const {
-  if (c.in_plane < 0 || c.in_plane == j || !fluid_) return false;
-  const int across = fluid_->mesh().neighbours[c.kf][j];
-  if (across < 0) return false;
-  Point3 corner[4];
-  fluid_->mesh().corners(across, corner);
-  const int p = c.in_plane;
-  for (int g = 0; g < 4; ++g) {
-    bool all = true;
-    for (int m = 1; m < 4 && all; ++m) all = in_face_plane(c.corner, p, corner[(g + m) & 3]);
-    if (all) return false;
-  }
-  return true;
-}
-
-// P's trace (u, v) on sigma: the lines within sigma into the piece's side (kf's, where n . A falls), and into the
-// other side where the piece there lacks the plane (far_lacks). The band's jump there is
-// still f_across - f_kf (the jumps add along any path), and the lines go the other way from P: the opposite
-// sign. Then, where the trace ends on an edge of T, the band's component along that edge (side_edge_component).
-void PointIntegrator3::side_trace(const SideContext& c, int sigma, int u, int v, int j, const SideLine& line) {
-  const Piece3& piece = c.piece;
-  const Point3 xu = c.xi_corner[u], edge = c.xi_corner[v] - xu;
-  // kf's side of the trace along line.dir: where n . A falls (A the sub-tetrahedron's straight image), from its
-  // gradient, not from the piece's corners, which a sliver of a piece (a face an ulp off a fluid plane, the fluid
-  // edge in it between two traces) puts on either side by rounding
-  const double side = -dot(line.face.grad, line.dir);
-  side_sweep(c, sigma, line, *c.along_trace, piece.v[u], xu, edge, 0, 1, line.dir, side, 1);
-  const bool far = far_lacks(c, j);
-  if (far) side_sweep(c, sigma, line, *c.along_trace, piece.v[u], xu, edge, 0, 1, line.dir, -side, -1);
-  if (!c.terms.quadratic) return;
-  for (int vertex : {u, v}) {
-    int other = -1, faces = 0;  // the faces of T the vertex lies on, sigma's aside
-    for (unsigned b = piece.planes[vertex] & 0xFu; b != 0; b &= b - 1) {
-      const int tf = c.on_face[__builtin_ctz(b)];
-      if (tf >= 0 && tf != sigma && tf != other) {
-        other = tf;
-        ++faces;
-      }
-    }
-    if (faces == 1) side_edge_component(c, sigma, other, c.xi_corner[vertex], line, far);  // on an edge of T
-  }
-}
-
-// T's edge on its faces sigma and edge_face, through xi0: tau along E = corner c1 - corner c0 (T's reference
-// corners) from xi0, s = lambda_c1 = s0 + tau; n . X - c = q0 + q1 tau + q2 tau^2 there, and its roots; the
-// sub-tetrahedron's part of the edge, tau in [ta, tb], where A = X at the ends (so that no component of the band
-// reaches past them): n . A - c is linear between qa and qb there, 0 at tau_p (NaN where it keeps its sign).
-bool PointIntegrator3::edge_line(const SideContext& c, Point3 xi0, int sigma, int edge_face, const SideLine& line,
-                                 EdgeLine& e) const {
-  const unsigned on = 1u << sigma | 1u << edge_face;
-  int c0 = -1;
-  e.c1 = -1;
-  for (int k = 0; k < 4; ++k)
-    if (!(on >> k & 1u)) (c0 < 0 ? c0 : e.c1) = k;
-  const Point3 corner[4] = {Point3{0, 0, 0}, Point3{1, 0, 0}, Point3{0, 1, 0}, Point3{0, 0, 1}};
-  e.along = corner[e.c1] - corner[c0];
-  e.s0 = barycentric(xi0, e.c1);
-  Point3 x, D[3];
-  reference_value(c.image, xi0, x, D);
-  e.q0 = dot(line.n, x - line.y);
-  e.q1 = dot(line.n, e.along.x * D[0] + e.along.y * D[1] + e.along.z * D[2]);
-  e.q2 = 0.5 * dot(line.n, hessian_twice(c.terms.hessian, e.along));
-  e.roots = 0;
-  if (e.q2 != 0) {
-    const double disc = e.q1 * e.q1 - 4 * e.q0 * e.q2;
-    if (disc > 0) {
-      const double big = -0.5 * (e.q1 + std::copysign(std::sqrt(disc), e.q1));
-      e.root[0] = big / e.q2;
-      e.root[1] = big != 0 ? e.q0 / big : e.root[0];
-      if (e.root[0] > e.root[1]) std::swap(e.root[0], e.root[1]);
-      e.roots = 2;
-    }
-  } else if (e.q1 != 0) {
-    e.root[e.roots++] = -e.q0 / e.q1;
-  }
-  double s_lo = 2, s_hi = -1;
-  for (int k = 0; k < 4; ++k)
-    if (barycentric(c.image.sub_xi[k], sigma) == 0 && barycentric(c.image.sub_xi[k], edge_face) == 0) {
-      s_lo = std::min(s_lo, barycentric(c.image.sub_xi[k], e.c1));
-      s_hi = std::max(s_hi, barycentric(c.image.sub_xi[k], e.c1));
-    }
-  if (!(s_hi > s_lo)) return false;
-  e.ta = s_lo - e.s0;
-  e.tb = s_hi - e.s0;
-  e.qa = e.q0 + e.ta * (e.q1 + e.ta * e.q2);
-  e.qb = e.q0 + e.tb * (e.q1 + e.tb * e.q2);
-  e.tau_p = (e.qa > 0) != (e.qb > 0) ? e.ta + (e.tb - e.ta) * e.qa / (e.qa - e.qb)
-                                     : std::numeric_limits<double>::quiet_NaN();
-  return true;
-}
-
-double PointIntegrator3::EdgeLine::end(double t, int direction, bool& at_p, bool from_p) const {
-  double e = direction > 0 ? tb : ta;
-  for (int r = 0; r < roots; ++r)
-    if ((root[r] - t) * direction > 0 && (root[r] - e) * direction < 0) e = root[r];
-  at_p = !from_p && (tau_p - t) * direction > 0 && (tau_p - e) * direction < 0;
-  return at_p ? tau_p : e;
-}
-
-// The band's component along T's edge (sigma, edge_face) that starts at P's crossing xi0 (the end of a trace of
-// the plane on sigma): where n . X - c > 0 there (the band on the piece's side, n . A - c falling along the edge
-// into it), or < 0 on the far side (far): to Q's crossing, past the piece's own segment (the pieces along the edge
-// there may lie in fluid tetrahedra without the plane). From each of its points a line within sigma along the
-// descent of n . A to Q's trace (along the ascent on the far side): + where it goes into sigma (the band that no
-// line from the trace reaches), - where it leaves (what those lines covered beyond the edge).
-void PointIntegrator3::side_edge_component(const SideContext& c, int sigma, int edge_face, Point3 xi0,
-                                           const SideLine& line, bool far_side) {
-  const Point3 w = -1.0 * line.dir;
-  const double entering = dot(w, barycentric_gradient(edge_face));  // > 0: w goes into sigma from the edge
-  if (entering == 0) return;
-  EdgeLine e;
-  if (!edge_line(c, xi0, sigma, edge_face, line, e)) return;
-  const bool far = !(e.q0 > 0);
-  if (far && !(e.q0 < 0 && far_side)) return;
-  const int direction = (e.qb - e.qa > 0) != far ? -1 : 1;
-  bool at_p;
-  const double t_end = e.end(0, direction, at_p, true);
-  const int sign = entering > 0 ? 1 : -1;
-  side_sweep(c, sigma, line, *c.along_edge, line.y, xi0, e.along, std::min(0.0, t_end), std::max(0.0, t_end), w,
-             far ? -1 : 1, sign);
-}
-
-// The piece's own segment of T's edge (u, v on sigma and edge_face), for a plane of kf that has no trace on it:
-// where n . X - c > 0 there (kf's side of P), in components of the band along the edge that do not end at P's
-// crossing (those are the trace's: side_edge_component); the lines within sigma as there.
-void PointIntegrator3::side_edge_local(const SideContext& c, int sigma, int edge_face, int u, int v,
-                                       const SideLine& line) {
-  const Point3 w = -1.0 * line.dir;
-  const double entering = dot(w, barycentric_gradient(edge_face));
-  if (entering == 0) return;
-  EdgeLine e;
-  if (!edge_line(c, c.xi_corner[u], sigma, edge_face, line, e)) return;
-  const double tau_v = barycentric(c.xi_corner[v], e.c1) - e.s0;
-  double cuts[4];
-  int m = 0;
-  const double lo = std::min(0.0, tau_v), hi = std::max(0.0, tau_v);
-  cuts[m++] = lo;
-  for (int r = 0; r < e.roots; ++r)
-    if (e.root[r] > lo && e.root[r] < hi) cuts[m++] = e.root[r];
-  cuts[m++] = hi;
-  for (int i = 0; i + 1 < m; ++i) {
-    const double tm = 0.5 * (cuts[i] + cuts[i + 1]);
-    if (!(e.q0 + tm * (e.q1 + tm * e.q2) > 0) || !(cuts[i + 1] > cuts[i])) continue;
-    bool back_p = false, forward_p = false;
-    e.end(tm, -1, back_p, false);
-    e.end(tm, 1, forward_p, false);
-    if (back_p || forward_p) continue;
-    side_sweep(c, sigma, line, *c.along_edge, line.y, c.xi_corner[u], e.along, cuts[i], cuts[i + 1], w, 1,
-               entering > 0 ? 1 : -1);
-  }
-}
-
-// From the points p0 + t edge, t in [t0, t1], lines within sigma along w (unit) to Q's trace, on side's side (r
-// side > 0, r the root of n . X = c along w), then columns along the band's axis d to Q: the region swept has
-// measure |edge x w . d| dt dr dl (times solid_det). A column along d into T adds the band there, one out of T
-// takes back what gather_band's columns added beyond sigma; sign: -1 where the lines take back.
-void PointIntegrator3::side_sweep(const SideContext& c, int sigma, const SideLine& line, const LineRule& along,
-                                  Point3 y, Point3 p0, Point3 edge, double t0, double t1, Point3 w, double side,
-                                  double sign) {
-  const BandFace& face = line.face;
-  const Point3 d = face.d, nu = barycentric_gradient(sigma), n = line.n;
-  const LineRule& across = *c.across_trace;
-  const double volume = std::fabs(dot(edge, cross(w, d))) * c.solid_det * (t1 - t0) * sign;
-  // A quadratic map along w from p, exactly: X(p + s w) = X + s X_w + s^2 / 2 X_ww, dX/dxi_i = D_i + s H_i w, with
-  // X_ww = sum_i w_i H_i w and the roots' second-order terms n . X_ww / 2 and n . X_dd / 2 the same for every line.
-  const bool quadratic = c.terms.quadratic;
-  Point3 hw[3], whw;
-  if (quadratic)
-    for (int i = 0; i < 3; ++i) {
-      hw[i] = hessian_along(c.terms.hessian, i, w);
-      whw = whw + coordinate(w, i) * hw[i];
-    }
-  const double q2w = quadratic ? 0.5 * dot(n, whw) : 0, q2d = quadratic ? 0.5 * dot(n, face.dhd) : 0;
-  for (size_t k = 0; k < along.nodes.size(); ++k) {
-    const Point3 p = p0 + (t0 + along.nodes[k] * (t1 - t0)) * edge;
-    Point3 xp, Dp[3];
-    reference_value(c.image, p, xp, Dp);
-    const Point3 slope = w.x * Dp[0] + w.y * Dp[1] + w.z * Dp[2];
-    const double r = quadratic ? nearest_root(dot(n, xp - y), dot(n, slope), q2w)
-                               : plane_root(c.image, n, y, p, xp, slope, w, c.terms);
-    if (!(r * side > 0)) continue;  // none (NaN), or on the other side
-    for (size_t q = 0; q < across.nodes.size(); ++q) {
-      const double s = across.nodes[q] * r;
-      const Point3 a = p + s * w;
-      Point3 x, D[3];
-      if (quadratic) {
-        x = xp + s * slope + (0.5 * s * s) * whw;
-        for (int i = 0; i < 3; ++i) D[i] = Dp[i] + s * hw[i];
-      } else {
-        reference_value(c.image, a, x, D);
-      }
-      const Point3 dd = d.x * D[0] + d.y * D[1] + d.z * D[2];
-      const double root =
-          quadratic ? nearest_root(dot(n, x - y), dot(n, dd), q2d) : plane_root(c.image, n, y, a, x, dd, d, c.terms);
-      if (!std::isfinite(root) || root == 0) continue;
-      const bool into = root * dot(nu, d) > 0;
-      const double measure = volume * along.weights[k] * std::fabs(r) * across.weights[q] * std::fabs(root);
-      add_column(c.image, c.kf, face, a, x, dd, D, root, into ? -measure : measure);
-    }
-  }
-}
-
 // Along a quadratic map's column X(xi + t d) = x0 + t dd + t^2 dhd / 2 and dX/dxi = D + t H d; the fluid
 // elements' reference coordinates are affine in X, so they follow the same way from their value and slope at t = 0.
 void PointIntegrator3::add_column(const ClippedImage3& image, int kf, const BandFace& face, Point3 xi, Point3 x0,
-                                  Point3 dd, const Point3 (&D)[3], double l, double column) {
+                                  Point3 dd, const Point3 (&D)[3], double l, double column, int near) {
+  const int own = kf;
+  if (near >= 0) kf = near;
   const PolynomialBasis3& fluid = integrand_.fluid;
   const LineRule& along = line_rule(image.degree);
   const int across = face.across;
@@ -873,9 +493,26 @@ void PointIntegrator3::add_column(const ClippedImage3& image, int kf, const Band
     }
     if (point_jacobians_) add_jacobian(image, Dt);
     const double h = 0.5 * t * t;
-    add_reference_point(face.quadratic ? eta0 + t * eta1 + h * face.eta_dhd : fluid.to_reference(kf, xt, image.origin),
-                        at, weight);
-    if (across < 0) continue;
+    const Point3 eta =
+        face.quadratic ? eta0 + t * eta1 + h * face.eta_dhd : fluid.to_reference(kf, xt, image.origin);
+    if (kf == own) {
+      add_reference_point(eta, at, weight);
+    } else {  // the column's own tetrahedron is not the piece's: with the points of the tetrahedra across
+      AcrossPoint& p = across_.emplace_back();
+      p.kf = kf;
+      p.eta = eta;
+      p.xi = at;
+      p.weight = weight;
+      p.jac = -1;
+      if (point_jacobians_) {
+        p.jac = static_cast<int>(across_jac_.size());
+        across_jac_.push_back(jac_.back());
+      }
+    }
+    if (across < 0) {
+      if (kf != own && point_jacobians_) jac_.pop_back();
+      continue;
+    }
     AcrossPoint& p = across_.emplace_back();
     p.kf = across;
     p.eta = face.quadratic ? across0 + t * across1 + h * face.across_dhd : fluid.to_reference(across, xt, image.origin);
@@ -885,6 +522,7 @@ void PointIntegrator3::add_column(const ClippedImage3& image, int kf, const Band
     if (!point_jacobians_) continue;
     p.jac = static_cast<int>(across_jac_.size());
     across_jac_.push_back(jac_.back());
+    if (kf != own) jac_.pop_back();
   }
 }
 

@@ -15,6 +15,8 @@
 
 #include "integration/integrator3d.hpp"
 #include "integration/point_values3d.hpp"
+#include "integration/conic_region.hpp"
+#include "mesh/face_star3d.hpp"
 
 namespace dlmfsi {
 
@@ -27,7 +29,11 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // fluid: its mesh's adjacency and dofs, for the band on the reference side where a sub-tetrahedron's face lies
   // in a fluid face plane (gather_band); without it such faces are taken as faces inside the sub-tetrahedron.
   PointIntegrator3(const Integrand3& integrand, CouplingReport& counts, const FluidSide3* fluid = nullptr);
+  // start: on the reference side, the sub-tetrahedron's faces on the solid tetrahedron's; finish: the band where it
+  // crosses them, once the image's pieces are done (side_band3d.cpp).
+  void start(const ClippedImage3& image) override;
   double integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) override;
+  void finish(const ClippedImage3& image, LocalBlock& block) override;
 
   // A point of the solid tetrahedron whose image lies in fluid tetrahedron kf: reference coordinates in kf
   // (eta) and in the solid tetrahedron (xi), its weight in solid measure (ds; a piece's points carry
@@ -76,71 +82,53 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // sub-tetrahedron's straight image has no gradient.
   bool band_face(const ClippedImage3& image, int kf, int j, int across, const QuadraticTerms& terms, BandFace& face,
                  Point3& n, double& rise, double& height) const;
-  // The band where it meets the solid tetrahedron's faces (gather_reference_side, after gather_band): columns
-  // from its faces that add the part of the band no column from a piece's face in it reaches and take back the
-  // part beyond the tetrahedron that those columns covered, so that each solid tetrahedron integrates the band
-  // inside itself with its own polynomials.
-  void gather_side_band(const ClippedImage3& image, int kf, const Piece3& piece, const Point3* xi_corner,
-                        double solid_det, const QuadraticTerms& terms);
-  // gather_side_band's piece: the rules of its lines, kf's corners, the face of the solid tetrahedron T each face
-  // of the sub-tetrahedron lies on (on_face[i] for the face opposite its corner i, or -1), and the face plane of kf
-  // that holds the straight image of the face of T being swept (in_plane, or -1).
-  struct SideContext {
-    SideContext(const ClippedImage3& image_, int kf_, const Piece3& piece_, const Point3* xi_corner_,
-                double solid_det_, const QuadraticTerms& terms_)
-        : image(image_), kf(kf_), piece(piece_), xi_corner(xi_corner_), solid_det(solid_det_), terms(terms_) {}
-    const ClippedImage3& image;
-    int kf;
-    const Piece3& piece;
-    const Point3* xi_corner;
-    double solid_det;
-    const QuadraticTerms& terms;
-    int on_face[4] = {-1, -1, -1, -1};
-    Point3 corner[4];
-    const LineRule* along_trace = nullptr;
-    const LineRule* across_trace = nullptr;
-    const LineRule* along_edge = nullptr;
-    Point3 edge_hessians[6];  // e^T H e along the sub-tetrahedron's six edges e (a quadratic map)
-    int in_plane = -1;
-  };
-  // One plane of kf swept on a face sigma of T: its columns (face), outward normal n, a point y of it (in the
-  // image's coordinates) and dir, the unit ascent of n . A_T within sigma (in xi).
-  struct SideLine {
-    int j = -1, across = -1;
-    BandFace face;
-    Point3 n, y, dir;
-    double reach = -1;  // band_may_reach's bound on |n . (X - A)|, on first use
-  };
-  // An edge of T through a point (edge_line): the line's direction along, the far corner's barycentric s0 at the
-  // point, n . X - c = q0 + q1 tau + q2 tau^2 along it and its roots, the sub-tetrahedron's part [ta, tb] with n .
-  // A - c from qa to qb there and 0 at tau_p.
-  struct EdgeLine {
-    int c1 = -1, roots = 0;
-    Point3 along;
-    double s0, q0, q1, q2, root[2], ta, tb, qa, qb, tau_p;
-    // The first of Q's crossings, P's (unless from_p: the start is P's) and the part's end from t in direction
-    // (+1, -1); at_p when it is P's.
-    double end(double t, int direction, bool& at_p, bool from_p) const;
-  };
-  bool side_line(const SideContext& c, int sigma, int j, SideLine& line) const;
-  bool far_lacks(const SideContext& c, int j) const;
-  bool band_may_reach(const SideContext& c, SideLine& line, Point3 a, Point3 b) const;
-  void side_trace(const SideContext& c, int sigma, int u, int v, int j, const SideLine& line);
-  bool edge_line(const SideContext& c, Point3 xi0, int sigma, int edge_face, const SideLine& line, EdgeLine& e) const;
-  void side_edge_component(const SideContext& c, int sigma, int edge_face, Point3 xi0, const SideLine& line,
-                           bool far_side);
-  void side_edge_local(const SideContext& c, int sigma, int edge_face, int u, int v, const SideLine& line);
-  void side_sweep(const SideContext& c, int sigma, const SideLine& line, const LineRule& along, Point3 y, Point3 p0,
-                  Point3 edge, double t0, double t1, Point3 w, double side, double sign);
-  // The root nearest 0 of n . (X(xi + r w) - y) (X = x and dX/dr = slope at xi), quadratic in r for a P2 map
-  // (terms: its hessian); NaN where it has none.
-  double plane_root(const ClippedImage3& image, Point3 n, Point3 y, Point3 xi, Point3 x, Point3 slope, Point3 w,
-                    const QuadraticTerms& terms) const;
+  // The normal of kf's face j, outward (n . y grows out of kf), scaled so that n . (y - y_j) = -lambda_j(y).
+  Point3 face_normal(int kf, int j) const;
+  // A column's length from xi (X = x there, dX/dl = dd along face.d): the root nearest 0 of n . (X(xi + l d) - y)
+  // (y a point of the plane), exact for a quadratic map; rise = d(n . A)/dl, the straight image's slope.
+  double column_root(const ClippedImage3& image, const BandFace& face, Point3 n, Point3 y, Point3 xi, Point3 x,
+                     Point3 dd, double rise) const;
   // The points of one column (gather_band): from xi, where X is x0, dX/dl is dd and dX/dxi is D (where the
   // points carry it), to l, the column's weight int_face's l height dA; in kf, and with the opposite weight in
   // the fluid tetrahedron across (across_).
+  // near >= 0: the column's own fluid tetrahedron (face's kf), other than the piece's kf: its points go with those
+  // of the tetrahedra across (kf -1: no piece).
   void add_column(const ClippedImage3& image, int kf, const BandFace& face, Point3 xi, Point3 x0, Point3 dd,
-                  const Point3 (&D)[3], double l, double column);
+                  const Point3 (&D)[3], double l, double column, int near = -1);
+  // The band where it crosses the faces of the solid tetrahedron (side_band3d.cpp): the fluid tetrahedra of the
+  // pieces on each sub-face on a face of it (note_side_piece), then the band crossing each such sub-face, once
+  // its pieces are done (finish).
+  void note_side_piece(int kf, const Piece3& piece);
+  struct SideFace {  // a sub-face, its frame and X on it (side_face)
+    Point3 xi[3], y[3], nu, o, e1, e2, x, d[3], h_e1[3], h_e2[3], x_u, x_v, x_uu, x_uv, x_vv, lo, hi;
+    Point3 edge_hessians[6];  // e^T H e along the sub-tetrahedron's edges
+  };
+  struct NearFace {  // a fluid face near a fluid tetrahedron, its corners, box and outward normal (face_normal)
+    MeshFace3 face;
+    Point3 v[3], lo, hi, n;
+  };
+  struct ColumnFrom {  // the columns of one fluid face on a sub-face
+    const BandFace& face;
+    Point3 n, y;
+    double rise, d_in;
+    int tet;
+  };
+  void side_face(const ClippedImage3& image, int sub, const QuadraticTerms& terms, SideFace& s) const;
+  void side_band(const ClippedImage3& image, int sub, const QuadraticTerms& terms);
+  void face_band(const ClippedImage3& image, int sub, const QuadraticTerms& terms, const SideFace& s,
+                 const NearFace& f);
+  void band_region(const ClippedImage3& image, const QuadraticTerms& terms, const SideFace& s, const ColumnFrom& c,
+                   const double (*uv)[2], int m, int sign);
+  const std::vector<NearFace>& near_faces(int kf);
+  int side_faces_ = 0, on_face_[4] = {-1, -1, -1, -1};  // on_face_[i]: T's face the sub-face opposite i lies on
+  std::vector<int> side_kf_[4];
+  std::vector<int> near_kf_;
+  std::vector<std::vector<NearFace>> near_;
+  std::vector<MeshFace3> touching_;
+  std::vector<NearFace> candidates_;
+  std::vector<unsigned> face_stamp_;  // 4 tet + face: == stamp_ once taken for the sub-face
+  unsigned stamp_ = 0;
+  std::vector<RegionPoint2> region_points_;
   // The face of kf (corner: its vertices; j: the face opposite vertex j) whose plane holds the piece's face
   // whose vertices share the planes common (Piece3::planes' bits), or -1; on_boundary when that face is on the
   // sub-tetrahedron's boundary.
@@ -225,8 +213,53 @@ class PointIntegrator3 : public PieceIntegrator3 {
   };
   std::vector<AcrossPoint> across_;
   std::vector<std::array<double, 9>> across_jac_;
+  // add_across's counting sort: the tetrahedra as met, each point's group, the groups' starts, the points in
+  // group order; tet_group_[kf] is kf's group while tet_stamp_[kf] == tet_epoch_
+  std::vector<int> across_tets_, across_group_, across_start_, across_order_, across_fill_, tet_group_;
+  std::vector<unsigned> tet_stamp_;
+  unsigned tet_epoch_ = 0;
   void add_across(const MappedTet& mt, LocalBlock& block);
   PointValues3 values_;
 };
+
+// Inline (in the header, for integrate_points3d.cpp and side_band3d.cpp): a call per point through the plugin's
+// symbol table cost 12 % of a curved call.
+inline void PointIntegrator3::reference_value(const ClippedImage3& image, Point3 xi, Point3& x, Point3 (&d)[3]) const {
+  const MappedTet& mt = image.tetrahedron;
+  if (image.origin != Point3()) {  // X(xi) - origin from the map's displacement, to the image's own precision
+    mt.displacement(xi, x, d);
+    x = x + (mt.origin() - image.origin);
+  } else {
+    mt.reference_derivatives(xi, x, d);
+  }
+}
+
+inline Point3 PointIntegrator3::reference_position(const ClippedImage3& image, Point3 xi) const {
+  const MappedTet& mt = image.tetrahedron;
+  if (image.origin != Point3()) return mt.displacement_position(xi) + (mt.origin() - image.origin);
+  return mt.position(xi);
+}
+
+// q(l) = c0 + c1 l + c2 l^2 along the column: c0 and c1 = n . dX/dl at xi; c2 = n . d^T H d / 2 for a quadratic
+// map, else from q at the first-order step l1 = -c0 / c1 (where c0 + c1 l1 = 0); where the map's slope is far off
+// the straight image's, that slope alone. The root continuous with -c0 / c1 as c2 -> 0, without cancellation.
+inline double PointIntegrator3::column_root(const ClippedImage3& image, const BandFace& face, Point3 n, Point3 y,
+                                            Point3 xi, Point3 x, Point3 dd, double rise) const {
+  const double c0 = dot(n, x - y);
+  if (c0 == 0) return 0;
+  const double jn = dot(n, dd);
+  double c1 = rise, c2 = 0;
+  if (jn > 0.5 * rise) {
+    c1 = jn;
+    if (face.quadratic) {
+      c2 = 0.5 * dot(n, face.dhd);
+    } else {
+      const double l1 = -c0 / c1;
+      c2 = dot(n, reference_position(image, xi + l1 * face.d) - y) / (l1 * l1);
+    }
+  }
+  const double disc = c1 * c1 - 4 * c0 * c2;
+  return disc >= 0 ? -2 * c0 / (c1 + std::sqrt(disc)) : -c0 / c1;
+}
 
 }  // namespace dlmfsi

@@ -57,6 +57,8 @@ class PieceIntegrator3 {
   // formed here, once.
   virtual void start(const ClippedImage3& /*image*/) {}
   virtual double integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) = 0;
+  // After the pieces of an image: what is integrated per image rather than per piece.
+  virtual void finish(const ClippedImage3& /*image*/, LocalBlock& /*block*/) {}
 };
 using TetrahedronIntegrator = ElementIntegratorOf<MappedTet>;
 
