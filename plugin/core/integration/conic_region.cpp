@@ -52,8 +52,8 @@ class ConicRegion {
   static constexpr int kMax = 64;  // polygon vertices
 
   ConicRegion(const double (*polygon)[2], int m, const Quadratic2& q, int sign, const LineRule& outer,
-              const LineRule& inner, std::vector<RegionPoint2>& out)
-      : m_(std::min(m, kMax)), sign_(sign), outer_(outer), inner_(inner), out_(out) {
+              const LineRule& inner, int degree, std::vector<RegionPoint2>& out)
+      : m_(std::min(m, kMax)), sign_(sign), degree_(degree), outer_(outer), inner_(inner), out_(out) {
     frame(polygon, q);
   }
   void run();
@@ -66,7 +66,7 @@ class ConicRegion {
   // the chord of the polygon along t at s (strictly between its ends), and the inner points on it
   void line(double at, double ws);
 
-  int m_, sign_;
+  int m_, sign_, degree_;
   const LineRule &outer_, &inner_;
   std::vector<RegionPoint2>& out_;
   double cu_ = 0, cv_ = 0, su_, sv_, tu_, tv_;  // centroid, and the axes s, t in (u, v)
@@ -174,7 +174,9 @@ void ConicRegion::run() {
   if (m_ < 3 || !(smax_ > smin_)) return;
   int n;
   if (!breakpoints(n)) return;
-  rho_min_ = std::pow(10.0, 7.0 / static_cast<double>(std::max<size_t>(1, outer_.nodes.size())));
+  // n points integrate a polynomial of degree k times a function analytic inside the ellipse rho to rho^-(2 n - k)
+  const double order = std::max(2.0, 2.0 * static_cast<double>(outer_.nodes.size()) - degree_);
+  rho_min_ = std::pow(10.0, 14.0 / order);
   const double merge = 1e-13 * (smax_ - smin_);
   for (int i = 0; i + 1 < n; ++i) {
     const double a = cuts_[i].s, b = cuts_[i + 1].s;
@@ -192,8 +194,9 @@ void ConicRegion::run() {
 // along t at s = c (real), the inner length behaves like sqrt(s - c) there: with s = c + g sigma^2 (g = +-1, sigma
 // from sqrt|from - c| to sqrt|to - c|) it is smooth in sigma, so each interval takes the real tangent nearest to it
 // (at an end or beyond) as its centre c where it is close. Gauss-Legendre with n points converges like rho^-2n, rho
-// the Bernstein ellipse of the interval (in sigma) through the nearest other tangent, real or complex: an interval
-// with rho below 10^(7 / n) (an error near 1e-14) is halved, at most 12 times.
+// the Bernstein ellipse of the interval (in sigma) through the nearest other tangent, real or complex, times the
+// growth of an integrand of degree k there (rho^k): an interval with rho below 10^(14 / (2 n - k)) (an error near
+// 1e-14) is halved, at most 40 times (two tangents 1e-6 apart need about 20).
 void ConicRegion::interval(double from, double to, int depth) {
   const double tiny = 1e-12 * (smax_ - smin_);
   int centre = -1;
@@ -224,7 +227,7 @@ void ConicRegion::interval(double from, double to, int depth) {
     }
   }
   auto position = [&](double sigma) { return centre >= 0 ? c + g * sigma * sigma : sigma; };
-  if (rho < rho_min_ && depth < 12) {
+  if (rho < rho_min_ && depth < 40) {
     const double mid = position(0.5 * (s0 + s1));
     interval(from, mid, depth + 1);
     interval(mid, to, depth + 1);
@@ -266,8 +269,8 @@ void ConicRegion::line(double at, double ws) {
 }  // namespace
 
 void conic_region_rule(const double (*polygon)[2], int m, const Quadratic2& q, int sign, const LineRule& outer,
-                       const LineRule& inner, std::vector<RegionPoint2>& out) {
-  ConicRegion(polygon, m, q, sign, outer, inner, out).run();
+                       const LineRule& inner, int degree, std::vector<RegionPoint2>& out) {
+  ConicRegion(polygon, m, q, sign, outer, inner, degree, out).run();
 }
 
 }  // namespace dlmfsi

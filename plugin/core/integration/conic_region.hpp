@@ -23,8 +23,9 @@ struct RegionPoint2 {
 };
 
 // Appends to out the points of the rule for {p in polygon : sign q(p) > 0} (sign +1 or -1), polygon convex
-// with m >= 3 vertices (u, v) in either order; outer and inner: the line rules (on [0, 1]) along s and t.
+// with m >= 3 vertices (u, v) in either order; outer and inner: the line rules (on [0, 1]) along s and t; degree:
+// the integrand's polynomial degree, which the outer rule's convergence near a tangent must make up for.
 void conic_region_rule(const double (*polygon)[2], int m, const Quadratic2& q, int sign, const LineRule& outer,
-                       const LineRule& inner, std::vector<RegionPoint2>& out);
+                       const LineRule& inner, int degree, std::vector<RegionPoint2>& out);
 
 }  // namespace dlmfsi

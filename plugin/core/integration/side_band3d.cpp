@@ -308,7 +308,7 @@ void PointIntegrator3::band_region(const ClippedImage3& image, const QuadraticTe
   q.cuv = dot(c.n, s.x_uv);
   q.cvv = 0.5 * dot(c.n, s.x_vv);
   region_points_.clear();
-  conic_region_rule(uv, m, q, sign, outer, inner, region_points_);
+  conic_region_rule(uv, m, q, sign, outer, inner, image.degree, region_points_);
   if (region_points_.empty()) return;
   const double solid_det = volume6(image.tetrahedron.solid[0], image.tetrahedron.solid[1],
                                    image.tetrahedron.solid[2], image.tetrahedron.solid[3]);
