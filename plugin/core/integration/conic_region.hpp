@@ -4,8 +4,9 @@
 // The plane is turned so that the inner lines (t) run along the gradient of q at the polygon's centroid; along
 // each line the roots of q (a quadratic in t) bound the region exactly, and the outer integral (s) is split
 // where the inner one is not smooth: at the polygon's vertices, where q = 0 crosses an edge, and where the
-// curve q = 0 has a tangent along t (q = dq/dt = 0: the inner length behaves like sqrt(s - s_t) there, so the
-// outer rule runs in sigma, s = s_t + (s_b - s_t) sigma^2, in which it is smooth).
+// curve q = 0 has a tangent along t (q = dq/dt = 0: the inner length behaves like sqrt(s - s_t) there, so an
+// interval near a real tangent runs its outer rule in sigma, s = s_t +- sigma^2, in which it is smooth, and an
+// interval with another tangent, real or complex, too close for its rule is halved: conic_region.cpp).
 #pragma once
 #include <vector>
 
