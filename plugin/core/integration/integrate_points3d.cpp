@@ -163,12 +163,23 @@ double PointIntegrator3::gather(const ClippedImage3& image, int kf, const Piece3
   return volume;
 }
 
-inline void PointIntegrator3::add_jacobian(const ClippedImage3& image, const Point3 (&d)[3]) {
+inline std::array<double, 9> PointIntegrator3::jacobian(const ClippedImage3& image, const Point3 (&d)[3]) const {
   MapValue3 mv;
   image.tetrahedron.set_jacobian(d, mv);
-  std::array<double, 9>& jac = jac_.emplace_back();
+  std::array<double, 9> jac;
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b) jac[3 * a + b] = mv.jac[a][b];
+  return jac;
+}
+
+inline void PointIntegrator3::add_jacobian(const ClippedImage3& image, const Point3 (&d)[3]) {
+  jac_.push_back(jacobian(image, d));
+}
+
+inline void PointIntegrator3::add_across_point(int kf, Point3 eta, Point3 xi, double weight,
+                                               const std::array<double, 9>& jac) {
+  across_.push_back({kf, point_jacobians_ ? static_cast<int>(across_jac_.size()) : -1, eta, xi, weight});
+  if (point_jacobians_) across_jac_.push_back(jac);
 }
 
 inline void PointIntegrator3::add_reference_point(const ClippedImage3& image, int kf, Point3 xi, Point3 x,
@@ -353,7 +364,6 @@ bool PointIntegrator3::band_face(const ClippedImage3& image, int kf, int j, int 
   const Point3 z = (1 / ex_det) * (w.x * cross(ex[1], ex[2]) + w.y * cross(ex[2], ex[0]) + w.z * cross(ex[0], ex[1]));
   const double grad = std::sqrt(dot(z, z));
   if (!(grad > 0)) return false;
-  face.grad = z;
   const Point3 axis[3] = {mt.reference_direction(0), mt.reference_direction(1), mt.reference_direction(2)};
   const Point3 d = column_axis(z, axis, rise);  // outward: n . A grows along d
   height = rise / grad;                         // d . nu: a column's height per unit of l
@@ -491,38 +501,22 @@ void PointIntegrator3::add_column(const ClippedImage3& image, int kf, const Band
     } else {
       xt = reference_position(image, at);
     }
-    if (point_jacobians_) add_jacobian(image, Dt);
+    std::array<double, 9> jac{};
+    if (point_jacobians_) jac = jacobian(image, Dt);
     const double h = 0.5 * t * t;
     const Point3 eta =
         face.quadratic ? eta0 + t * eta1 + h * face.eta_dhd : fluid.to_reference(kf, xt, image.origin);
     if (kf == own) {
+      if (point_jacobians_) jac_.push_back(jac);
       add_reference_point(eta, at, weight);
     } else {  // the column's own tetrahedron is not the piece's: with the points of the tetrahedra across
-      AcrossPoint& p = across_.emplace_back();
-      p.kf = kf;
-      p.eta = eta;
-      p.xi = at;
-      p.weight = weight;
-      p.jac = -1;
-      if (point_jacobians_) {
-        p.jac = static_cast<int>(across_jac_.size());
-        across_jac_.push_back(jac_.back());
-      }
+      add_across_point(kf, eta, at, weight, jac);
     }
-    if (across < 0) {
-      if (kf != own && point_jacobians_) jac_.pop_back();
-      continue;
-    }
-    AcrossPoint& p = across_.emplace_back();
-    p.kf = across;
-    p.eta = face.quadratic ? across0 + t * across1 + h * face.across_dhd : fluid.to_reference(across, xt, image.origin);
-    p.xi = at;
-    p.weight = -weight;
-    p.jac = -1;
-    if (!point_jacobians_) continue;
-    p.jac = static_cast<int>(across_jac_.size());
-    across_jac_.push_back(jac_.back());
-    if (kf != own) jac_.pop_back();
+    if (across >= 0)
+      add_across_point(across,
+                       face.quadratic ? across0 + t * across1 + h * face.across_dhd
+                                      : fluid.to_reference(across, xt, image.origin),
+                       at, -weight, jac);
   }
 }
 

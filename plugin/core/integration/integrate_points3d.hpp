@@ -73,7 +73,6 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // the latter in the reference coordinates of kf and of the fluid tetrahedron across (-1: none).
   struct BandFace {
     Point3 d, hd[3], dhd, eta_dhd, across_dhd;
-    Point3 grad;  // grad_xi (n . A) of the sub-tetrahedron's straight image
     bool quadratic = false;
     int across = -1;
   };
@@ -102,6 +101,9 @@ class PointIntegrator3 : public PieceIntegrator3 {
   struct SideFace {  // a sub-face, its frame and X on it (side_face)
     Point3 xi[3], y[3], nu, o, e1, e2, x, d[3], h_e1[3], h_e2[3], x_u, x_v, x_uu, x_uv, x_vv, lo, hi;
     Point3 edge_hessians[6];  // e^T H e along the sub-tetrahedron's edges
+    Point3 ex[3], ey[3];      // the sub-tetrahedron's edges from its corner 0, in xi and their images
+    double ex_det, solid_det;  // det of ex; 6 |solid tetrahedron|
+    bool whole;                // the sub-tetrahedron is the solid tetrahedron (subdivide 0)
   };
   struct NearFace {  // a fluid face near a fluid tetrahedron, its corners, box and outward normal (face_normal)
     MeshFace3 face;
@@ -146,6 +148,7 @@ class PointIntegrator3 : public PieceIntegrator3 {
   void add_reference_point(const ClippedImage3& image, int kf, Point3 xi, Point3 x, double weight);
   // dX/ds from d[i] = dX/dxi_i, into jac_.
   void add_jacobian(const ClippedImage3& image, const Point3 (&d)[3]);
+  std::array<double, 9> jacobian(const ClippedImage3& image, const Point3 (&d)[3]) const;
   // The same with the point's reference coordinates in kf, eta, given.
   void add_reference_point(Point3 eta, Point3 xi, double weight);
   // Folds the weights and the chain rule's jacobian into the fluid functions read (with constant multiplier
@@ -213,6 +216,8 @@ class PointIntegrator3 : public PieceIntegrator3 {
   };
   std::vector<AcrossPoint> across_;
   std::vector<std::array<double, 9>> across_jac_;
+  // A point of fluid tetrahedron kf among those across, with its dX/ds where the points carry it.
+  void add_across_point(int kf, Point3 eta, Point3 xi, double weight, const std::array<double, 9>& jac);
   // add_across's counting sort: the tetrahedra as met, each point's group, the groups' starts, the points in
   // group order; tet_group_[kf] is kf's group while tet_stamp_[kf] == tet_epoch_
   std::vector<int> across_tets_, across_group_, across_start_, across_order_, across_fill_, tet_group_;

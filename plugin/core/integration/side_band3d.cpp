@@ -123,6 +123,15 @@ void PointIntegrator3::side_face(const ClippedImage3& image, int sub, const Quad
     s.xi[m] = image.sub_xi[corner[m]];
     s.y[m] = image.sub_y[corner[m]] - image.origin;
   }
+  for (int i = 0; i < 3; ++i) {
+    s.ex[i] = image.sub_xi[i + 1] - image.sub_xi[0];
+    s.ey[i] = image.sub_y[i + 1] - image.sub_y[0];
+  }
+  s.ex_det = dot(s.ex[0], cross(s.ex[1], s.ex[2]));
+  const MappedTet& mt = image.tetrahedron;
+  s.solid_det = volume6(mt.solid[0], mt.solid[1], mt.solid[2], mt.solid[3]);
+  s.whole = true;
+  for (int i = 0; i < 4 && s.whole; ++i) s.whole = barycentric(image.sub_xi[i], i) == 1;
   const Point3 nu = barycentric_gradient(sigma);
   s.nu = (1 / std::sqrt(dot(nu, nu))) * nu;
   s.o = s.xi[0];
@@ -247,14 +256,10 @@ void PointIntegrator3::face_band(const ClippedImage3& image, int sub, const Quad
   double rise, height;
   if (!band_face(image, f.face.tet, f.face.face, f.face.across, terms, face, n, rise, height)) return;
   // a column from xi starts at xi - (a / rise) d, whose straight image is A(xi) - (a / rise) Y_d, Y_d = dA/dxi d
-  const Point3 ex[3] = {image.sub_xi[1] - image.sub_xi[0], image.sub_xi[2] - image.sub_xi[0],
-                        image.sub_xi[3] - image.sub_xi[0]};
-  const Point3 ey[3] = {image.sub_y[1] - image.sub_y[0], image.sub_y[2] - image.sub_y[0],
-                        image.sub_y[3] - image.sub_y[0]};
-  const double ex_det = dot(ex[0], cross(ex[1], ex[2]));
-  const Point3 yd = (dot(face.d, cross(ex[1], ex[2])) / ex_det) * ey[0] +
-                    (dot(face.d, cross(ex[2], ex[0])) / ex_det) * ey[1] +
-                    (dot(face.d, cross(ex[0], ex[1])) / ex_det) * ey[2];
+  const Point3 (&ex)[3] = s.ex;
+  const Point3 yd = (dot(face.d, cross(ex[1], ex[2])) / s.ex_det) * s.ey[0] +
+                    (dot(face.d, cross(ex[2], ex[0])) / s.ex_det) * s.ey[1] +
+                    (dot(face.d, cross(ex[0], ex[1])) / s.ex_det) * s.ey[2];
   const double yd_n = dot(n, yd);
   if (!(std::fabs(yd_n) > 0)) return;
   const Point3 fv[3] = {y, f.v[1] - image.origin, f.v[2] - image.origin};
@@ -295,9 +300,7 @@ void PointIntegrator3::face_band(const ClippedImage3& image, int sub, const Quad
 // 1.6e-16, and 7.7e-12 at subdivide 0 with two less along.
 void PointIntegrator3::band_region(const ClippedImage3& image, const QuadraticTerms& terms, const SideFace& s,
                                    const ColumnFrom& c, const double (*uv)[2], int m, int sign) {
-  bool whole = true;
-  for (int i = 0; i < 4 && whole; ++i) whole = barycentric(image.sub_xi[i], i) == 1;
-  const int extra = whole ? 2 : 0;
+  const int extra = s.whole ? 2 : 0;
   const LineRule& outer = line_rule(2 * image.degree + 4 + extra);
   const LineRule& inner = line_rule(image.degree + 2 + extra);
   Quadratic2 q;  // n . (X - y) on sigma in (u, v)
@@ -310,8 +313,6 @@ void PointIntegrator3::band_region(const ClippedImage3& image, const QuadraticTe
   region_points_.clear();
   conic_region_rule(uv, m, q, sign, outer, inner, image.degree, region_points_);
   if (region_points_.empty()) return;
-  const double solid_det = volume6(image.tetrahedron.solid[0], image.tetrahedron.solid[1],
-                                   image.tetrahedron.solid[2], image.tetrahedron.solid[3]);
   const Point3 d = c.face.d;
   const Point3 dd_o = d.x * s.d[0] + d.y * s.d[1] + d.z * s.d[2];
   const Point3 dd_u = s.e1.x * c.face.hd[0] + s.e1.y * c.face.hd[1] + s.e1.z * c.face.hd[2];
@@ -331,7 +332,7 @@ void PointIntegrator3::band_region(const ClippedImage3& image, const QuadraticTe
     }
     const double root = column_root(image, c.face, c.n, c.y, xi, x, dd, c.rise);
     if (!std::isfinite(root) || root == 0) continue;
-    add_column(image, -1, c.face, xi, x, dd, D, root, rp.weight * std::fabs(root) * c.d_in * solid_det, c.tet);
+    add_column(image, -1, c.face, xi, x, dd, D, root, rp.weight * std::fabs(root) * c.d_in * s.solid_det, c.tet);
   }
 }
 
