@@ -266,6 +266,12 @@ void PolynomialTerms3::weighted_sums(const int* twin, const double* j, const Poi
     mk[0] = pk[0];
     for (int r = 1; r < nr; ++r) mk[read[r - 1]] = pk[r];
   }
+  sums_from_moments(twin, j, moment.data(), count, value_sum, gradient_sum);
+}
+
+void PolynomialTerms3::sums_from_moments(const int* twin, const double* j, const double* moment, int count,
+                                         double* value_sum, double* gradient_sum) const {
+  const int nm = monomial_count3(degree_);
   auto sum = [&](std::size_t slot, const double* mk) {
     double s = constant_[slot] * mk[0];
     for (int t = start_[slot]; t < start_[slot + 1]; ++t) s += coefficient_[t] * mk[monomial_[t]];
@@ -274,7 +280,7 @@ void PolynomialTerms3::weighted_sums(const int* twin, const double* j, const Poi
   for (std::size_t f = 0; f < width_; ++f) {
     if (twin && twin[f] >= 0) continue;  // copied below
     for (int k = 0; k < count; ++k) {
-      const double* mk = moment.data() + static_cast<std::size_t>(k) * nm;
+      const double* mk = moment + static_cast<std::size_t>(k) * nm;
       value_sum[count * f + k] = sum(4 * f, mk);
       if (!gradient_sum) continue;
       const double r[3] = {sum(4 * f + 1, mk), sum(4 * f + 2, mk), sum(4 * f + 3, mk)};
@@ -291,6 +297,13 @@ void weighted_sums_polynomials3(int degree, const double* coef, std::size_t widt
   thread_local PolynomialTerms3 terms;
   terms.set(degree, coef, width);
   terms.weighted_sums(nullptr, j, xi, weight, count, n, value_sum, gradient_sum);
+}
+
+void sums_from_moments_polynomials3(int degree, const double* coef, std::size_t width, const double* j,
+                                    const double* moment, int count, double* value_sum, double* gradient_sum) {
+  thread_local PolynomialTerms3 terms;
+  terms.set(degree, coef, width);
+  terms.sums_from_moments(nullptr, j, moment, count, value_sum, gradient_sum);
 }
 
 void evaluate_polynomials3_gradient_sums(int degree, const double* coef, std::size_t width, const double* j,

@@ -39,6 +39,10 @@ class PolynomialTerms3 {
   // constant times M_k0 plus its terms' coefficients times M_km.
   void weighted_sums(const int* twin, const double* j, const Point3* xi, const double* weight, int count, int n,
                      double* value_sum, double* gradient_sum) const;
+  // The same sums from the weighted sums of every monomial, moment[k nm + m] = sum_p weight_k[p] (monomial
+  // m)(p) (nm = monomial_count3(degree)), however they were formed.
+  void sums_from_moments(const int* twin, const double* j, const double* moment, int count, double* value_sum,
+                         double* gradient_sum) const;
 
   // Integrals from moments (integrate_monomials3d.hpp). With M_m = sum_p weight[p] xi^m(p) for the monomials
   // of degree <= degree + 1 (numbered as for that degree), a function's weighted sums are linear in the
@@ -79,6 +83,9 @@ void evaluate_polynomials3(int degree, const double* coef, std::size_t width, co
                            const Point3* xi, int n, double* value, double* gradient);
 void weighted_sums_polynomials3(int degree, const double* coef, std::size_t width, const double* j, const Point3* xi,
                                 const double* weight, int count, int n, double* value_sum, double* gradient_sum);
+// PolynomialTerms3::sums_from_moments of width polynomials coef (no twins).
+void sums_from_moments_polynomials3(int degree, const double* coef, std::size_t width, const double* j,
+                                    const double* moment, int count, double* value_sum, double* gradient_sum);
 void evaluate_polynomials3_gradient_sums(int degree, const double* coef, std::size_t width, const double* j,
                                          const Point3* xi, const double* weight, int n, double* value,
                                          double* gradient_sum);

@@ -100,6 +100,17 @@ void PolynomialBasis3::weighted_sums(int k, const Point3* xi, const double* weig
                              value_sum, gradient_sum);
 }
 
+void PolynomialBasis3::sums_from_moments(int k, const double* moment, int count, double* value_sum,
+                                         double* gradient_sum) const {
+  if (shared(k) && !terms_.empty()) {
+    terms_.sums_from_moments(twin_.empty() ? nullptr : twin_.data(), inverse_jacobian(k), moment, count, value_sum,
+                             gradient_sum);
+    return;
+  }
+  sums_from_moments_polynomials3(degree_, coefficients(k), functions_.size(), inverse_jacobian(k), moment, count,
+                                 value_sum, gradient_sum);
+}
+
 void PolynomialBasis3::evaluate(int k, Point3 xi, double* out) const {
   if (degree_ < 0) {
     basis_.evaluate(k, xi, out);

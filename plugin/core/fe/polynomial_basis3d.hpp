@@ -41,6 +41,9 @@ class PolynomialBasis3 {
   // vectors at once (PolynomialTerms3::weighted_sums; fitted() only).
   void weighted_sums(int k, const Point3* xi, const double* weight, int count, int n, double* value_sum,
                      double* gradient_sum) const;
+  // The same sums from the weighted sums of every monomial of degree <= degree() in element k's reference
+  // coordinates, moment[k' nm + m] for weight vector k' (PolynomialTerms3::sums_from_moments).
+  void sums_from_moments(int k, const double* moment, int count, double* value_sum, double* gradient_sum) const;
 
   // Integrals from the monomial moments of a piece in element k's reference coordinates
   // (PolynomialTerms3::prepare_moments, integrate): on the elements of the shared fit only.

@@ -28,20 +28,16 @@ PointIntegrator3::PointIntegrator3(const Integrand3& integrand, CouplingReport& 
       fluid_(fluid), values_(integrand) {}
 
 double PointIntegrator3::integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) {
-  across_.clear();
-  across_jac_.clear();
+  begin_across();
   const double volume = gather(image, kf, piece);
   add_gathered(image.tetrahedron, kf, block);
-  if (!across_.empty()) add_across(image.tetrahedron, block);
+  if (groups_used_ > 0) add_across(image.tetrahedron, block);
   return volume;
 }
 
-void PointIntegrator3::add_across(const MappedTet& mt, LocalBlock& block) {
-  // by fluid tetrahedron, in the order first met: the tetrahedra numbered as met, the points counted per
-  // tetrahedron and laid out in that order (a counting sort)
-  across_tets_.clear();
-  across_group_.resize(across_.size());
-  const size_t tets = static_cast<size_t>(fluid_->mesh().size());
+void PointIntegrator3::begin_across() {
+  groups_used_ = 0;
+  const size_t tets = static_cast<size_t>(fluid_ ? fluid_->mesh().size() : 0);
   if (tet_stamp_.size() != tets) {
     tet_stamp_.assign(tets, 0);
     tet_group_.assign(tets, 0);
@@ -50,38 +46,24 @@ void PointIntegrator3::add_across(const MappedTet& mt, LocalBlock& block) {
     std::fill(tet_stamp_.begin(), tet_stamp_.end(), 0);
     tet_epoch_ = 1;
   }
-  for (size_t i = 0; i < across_.size(); ++i) {
-    const int kf = across_[i].kf;
-    if (tet_stamp_[kf] != tet_epoch_) {
-      tet_stamp_[kf] = tet_epoch_;
-      tet_group_[kf] = static_cast<int>(across_tets_.size());
-      across_tets_.push_back(kf);
-    }
-    across_group_[i] = tet_group_[kf];
+}
+
+// Each group's points become the gathered points in turn (their vectors swapped, not copied).
+void PointIntegrator3::add_across(const MappedTet& mt, LocalBlock& block) {
+  for (int g = 0; g < groups_used_; ++g) {
+    AcrossGroup& group = across_[g];
+    eta_.swap(group.eta);
+    xi_.swap(group.xi);
+    weight_.swap(group.weight);
+    jac_.swap(group.jac);
+    block.enter_fluid_element(fluid_->dofs(group.kf));
+    add_gathered(mt, group.kf, block);
+    eta_.swap(group.eta);
+    xi_.swap(group.xi);
+    weight_.swap(group.weight);
+    jac_.swap(group.jac);
   }
-  across_start_.assign(across_tets_.size() + 1, 0);
-  for (int g : across_group_) ++across_start_[g + 1];
-  for (size_t g = 0; g < across_tets_.size(); ++g) across_start_[g + 1] += across_start_[g];
-  across_order_.resize(across_.size());
-  {
-    std::vector<int>& next = across_fill_;
-    next.assign(across_start_.begin(), across_start_.end() - 1);
-    for (size_t i = 0; i < across_.size(); ++i) across_order_[next[across_group_[i]]++] = static_cast<int>(i);
-  }
-  for (size_t g = 0; g < across_tets_.size(); ++g) {
-    const int kf = across_tets_[g];
-    clear_points();
-    for (int k = across_start_[g]; k < across_start_[g + 1]; ++k) {
-      const AcrossPoint& a = across_[across_order_[k]];
-      eta_.push_back(a.eta);
-      xi_.push_back(a.xi);
-      weight_.push_back(a.weight);
-      if (point_jacobians_) jac_.push_back(across_jac_[a.jac]);
-    }
-    block.enter_fluid_element(fluid_->dofs(kf));
-    add_gathered(mt, kf, block);
-  }
-  across_.clear();
+  groups_used_ = 0;
 }
 
 void PointIntegrator3::add_points(const MappedTet& mt, int kf, const PointData* points, int n, LocalBlock& block) {
@@ -178,8 +160,22 @@ inline void PointIntegrator3::add_jacobian(const ClippedImage3& image, const Poi
 
 inline void PointIntegrator3::add_across_point(int kf, Point3 eta, Point3 xi, double weight,
                                                const std::array<double, 9>& jac) {
-  across_.push_back({kf, point_jacobians_ ? static_cast<int>(across_jac_.size()) : -1, eta, xi, weight});
-  if (point_jacobians_) across_jac_.push_back(jac);
+  if (tet_stamp_[kf] != tet_epoch_) {
+    tet_stamp_[kf] = tet_epoch_;
+    tet_group_[kf] = groups_used_;
+    if (groups_used_ == static_cast<int>(across_.size())) across_.emplace_back();
+    AcrossGroup& group = across_[groups_used_++];
+    group.kf = kf;
+    group.eta.clear();
+    group.xi.clear();
+    group.weight.clear();
+    group.jac.clear();
+  }
+  AcrossGroup& group = across_[tet_group_[kf]];
+  group.eta.push_back(eta);
+  group.xi.push_back(xi);
+  group.weight.push_back(weight);
+  if (point_jacobians_) group.jac.push_back(jac);
 }
 
 inline void PointIntegrator3::add_reference_point(const ClippedImage3& image, int kf, Point3 xi, Point3 x,
@@ -618,13 +614,10 @@ void taylor_coefficients(const double* coef, int degree, std::size_t width, Poin
 // where dX/ds grad_s psi = (J(c) + sum_j r_j G_j) K^T grad_xi psi (K = dxi/ds) = sum_g u_g r^g, a polynomial of
 // degree m in r. The same rule as point by point, regrouped.
 void PointIntegrator3::add_weighted_sums(const MappedTet& mt, int kf, int n, LocalBlock& block) {
-  const PolynomialBasis3 &fluid = integrand_.fluid, &multiplier = integrand_.multiplier;
-  const int degree = multiplier.degree(), count = monomial_count3(degree);
-  const size_t nf = static_cast<size_t>(fluid_functions_), nn = static_cast<size_t>(n), cc = count;
-  const size_t ns = multiplier.functions().size();
+  const int degree = integrand_.multiplier.degree(), count = monomial_count3(degree);
+  const size_t nn = static_cast<size_t>(n), cc = count;
   if (sum_weights_.size() < cc * nn) sum_weights_.resize(cc * nn);
-  value_terms_.resize(cc * (nf + ns));
-  gradient_terms_.resize(3 * cc * (nf + ns));
+  size_weighted_terms();
   const Point3 c = xi_[0];
   double* w = sum_weights_.data();
   // W_0 = w, W of the degree-1 monomials w r_i, each further one its parent's times one coordinate of r
@@ -646,11 +639,27 @@ void PointIntegrator3::add_weighted_sums(const MappedTet& mt, int kf, int n, Loc
       to[q] = from[q] * (axis == 0 ? r.x : axis == 1 ? r.y : r.z);
     }
   }
+  integrand_.fluid.weighted_sums(kf, eta_.data(), w, count, n, value_terms_.data(),
+                                 gradients_ ? gradient_terms_.data() : nullptr);
+  add_weighted_terms(mt, c, block);
+}
+
+void PointIntegrator3::size_weighted_terms() {
+  const size_t nf = static_cast<size_t>(fluid_functions_), cc = monomial_count3(integrand_.multiplier.degree());
+  const size_t ns = integrand_.multiplier.functions().size();
+  value_terms_.resize(cc * (nf + ns));
+  gradient_terms_.resize(3 * cc * (nf + ns));
+}
+
+void PointIntegrator3::add_weighted_terms(const MappedTet& mt, Point3 c, LocalBlock& block) {
+  const PolynomialBasis3& multiplier = integrand_.multiplier;
+  const int degree = multiplier.degree(), count = monomial_count3(degree);
+  const size_t nf = static_cast<size_t>(fluid_functions_), cc = count;
+  const size_t ns = multiplier.functions().size();
   double* vs = value_terms_.data();     // V_g of fluid function f at count f + g
   double* taylor = vs + cc * nf;      // A_g of multiplier function b at count b + g
   double* ps = gradient_terms_.data();  // P_g of f at 3 (count f + g)
   double* u = ps + 3 * cc * nf;       // c1 u_g of b at 3 (count b + g)
-  fluid.weighted_sums(kf, eta_.data(), w, count, n, vs, gradients_ ? ps : nullptr);
   taylor_coefficients(multiplier.coefficients(mt.k), degree, ns, c, taylor);
   if (gradients_) {
     MapValue3 jc, gj[3];

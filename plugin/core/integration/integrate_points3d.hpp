@@ -16,6 +16,7 @@
 #include "integration/integrator3d.hpp"
 #include "integration/point_values3d.hpp"
 #include "integration/conic_region.hpp"
+#include "integration/point_moments3d.hpp"
 #include "mesh/face_star3d.hpp"
 
 namespace dlmfsi {
@@ -131,6 +132,22 @@ class PointIntegrator3 : public PieceIntegrator3 {
   std::vector<unsigned> face_stamp_;  // 4 tet + face: == stamp_ once taken for the sub-face
   unsigned stamp_ = 0;
   std::vector<RegionPoint2> region_points_;
+  // Under weighted_sum_terms and a fitted fluid (a quadratic map) the side band's points are summed as moments
+  // (PointMoments3): a fluid face's columns in face_moments_, then into the moments of each of its two fluid
+  // tetrahedra (moment_groups_, grouped as the points across), added to the block once per image
+  // (add_side_moments), each point's fluid monomials formed once instead of once per tetrahedron.
+  bool side_moments_ = false;
+  PointMoments3 face_moments_;
+  struct MomentGroup {
+    int kf = -1;
+    PointMoments3 moments;
+  };
+  std::vector<MomentGroup> moment_groups_;
+  int moment_groups_used_ = 0;
+  std::vector<double> element_moments_;
+  // face_moments_ times sign into fluid tetrahedron kf's moments.
+  void add_face_moments(int kf, double sign);
+  void add_side_moments(const ClippedImage3& image, LocalBlock& block);
   // The face of kf (corner: its vertices; j: the face opposite vertex j) whose plane holds the piece's face
   // whose vertices share the planes common (Piece3::planes' bits), or -1; on_boundary when that face is on the
   // sub-tetrahedron's boundary.
@@ -176,6 +193,10 @@ class PointIntegrator3 : public PieceIntegrator3 {
     return polynomial_multiplier_ && !mt.affine && mt.fitted_degree() == 2;
   }
   void add_weighted_sums(const MappedTet& mt, int kf, int n, LocalBlock& block);
+  // add_weighted_sums' terms once V_g and P_g (value_terms_ and gradient_terms_, sized by size_weighted_terms)
+  // are formed about c, whichever way.
+  void size_weighted_terms();
+  void add_weighted_terms(const MappedTet& mt, Point3 c, LocalBlock& block);
   // A quadratic map's dX/ds(xi + r) = J + sum_j r_j G_j about xi: J = dX/ds(xi) and G_j = d(dX/ds)/dxi_j, each
   // formed by set_jacobian (of dX/dxi(xi) and of the hessian's columns), so each is of the size of dX/ds
   // whatever the mesh's units.
@@ -207,22 +228,25 @@ class PointIntegrator3 : public PieceIntegrator3 {
   std::vector<std::array<double, 9>> jac_;
   void clear_points();
   const FluidSide3* fluid_;
-  // Band points of the fluid tetrahedron across a face plane of the piece's (gather_band), added after the
-  // piece's own (add_across); their dX/ds, where the points carry it, at across_jac_[jac].
-  struct AcrossPoint {
-    int kf, jac;
-    Point3 eta, xi;
-    double weight;
+  // Band points of fluid tetrahedra other than the piece's (gather_band's across a face plane, the side band's),
+  // added after the piece's own (add_across): one group per fluid tetrahedron, in the order first met, each with
+  // its points in the order added (dX/ds where the points carry it). tet_group_[kf] is kf's group while
+  // tet_stamp_[kf] == tet_epoch_; groups_used_ of across_ are in use, the others keep their room.
+  struct AcrossGroup {
+    int kf = -1;
+    std::vector<Point3> eta, xi;
+    std::vector<double> weight;
+    std::vector<std::array<double, 9>> jac;
   };
-  std::vector<AcrossPoint> across_;
-  std::vector<std::array<double, 9>> across_jac_;
-  // A point of fluid tetrahedron kf among those across, with its dX/ds where the points carry it.
-  void add_across_point(int kf, Point3 eta, Point3 xi, double weight, const std::array<double, 9>& jac);
-  // add_across's counting sort: the tetrahedra as met, each point's group, the groups' starts, the points in
-  // group order; tet_group_[kf] is kf's group while tet_stamp_[kf] == tet_epoch_
-  std::vector<int> across_tets_, across_group_, across_start_, across_order_, across_fill_, tet_group_;
+  std::vector<AcrossGroup> across_;
+  int groups_used_ = 0;
+  std::vector<int> tet_group_;
   std::vector<unsigned> tet_stamp_;
   unsigned tet_epoch_ = 0;
+  // No group in use, a fresh epoch (before the points of an image's piece or of its side band).
+  void begin_across();
+  // A point of fluid tetrahedron kf among those across, with its dX/ds where the points carry it.
+  void add_across_point(int kf, Point3 eta, Point3 xi, double weight, const std::array<double, 9>& jac);
   void add_across(const MappedTet& mt, LocalBlock& block);
   PointValues3 values_;
 };

@@ -1,0 +1,149 @@
+#include "integration/point_moments3d.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+
+#include "fe/lattice3d.hpp"
+#include "fe/weighted_sum.hpp"
+
+namespace dlmfsi {
+
+namespace {
+
+// times[b][j]: the index of monomial b times coordinate j (b of degree < kMaxLatticeDegree).
+const std::vector<std::array<int, 3>>& monomial_times3() {
+  static const auto table = [] {
+    std::vector<std::array<int, 3>> all(monomial_count3(kMaxLatticeDegree - 1));
+    for (int b = 0; b < static_cast<int>(all.size()); ++b) {
+      int e[3];
+      monomial_exponents3(b, e[0], e[1], e[2]);
+      all[b] = {monomial_index3(e[0] + 1, e[1], e[2]), monomial_index3(e[0], e[1] + 1, e[2]),
+                monomial_index3(e[0], e[1], e[2] + 1)};
+    }
+    return all;
+  }();
+  return table;
+}
+
+}  // namespace
+
+void PointMoments3::reset(int m, int p, Point3 c, Point3 x_c) {
+  m_ = m;
+  p_ = p;
+  cg_ = monomial_count3(m);
+  cb_ = monomial_count3(p);
+  points_ = 0;
+  c_ = c;
+  x_c_ = x_c;
+  moment_.assign(static_cast<std::size_t>(cg_) * cb_, 0.0);
+}
+
+void PointMoments3::clear() {
+  std::fill(moment_.begin(), moment_.end(), 0.0);
+  points_ = 0;
+  xi_.clear();
+  x_.clear();
+  w_.clear();
+}
+
+namespace {
+
+// Rows 4 to count - 1 of monomials along the points (row m: its parent's times one coordinate of r), rows 0 to
+// 3 given.
+void parent_rows(double* rows, int count, std::size_t n, const double* const (&r)[3]) {
+  const auto& parents = monomial_parents3();
+  for (int m = 4; m < count; ++m) {
+    const double* from = rows + parents[m].parent * n;
+    const double* factor = r[parents[m].axis];
+    double* to = rows + m * n;
+    for (std::size_t q = 0; q < n; ++q) to[q] = from[q] * factor[q];
+  }
+}
+
+}  // namespace
+
+void PointMoments3::settle() {
+  const std::size_t n = w_.size();
+  if (n == 0) return;
+  // rows: W_g = w (xi - c)^g (cg_ rows), then B_b = (x - x_c)^b (cb_ rows), then r = xi - c and s = x - x_c
+  rows_.resize((static_cast<std::size_t>(cg_ + cb_) + 6) * n);
+  double* wr = rows_.data();
+  double* br = wr + cg_ * n;
+  double* r = br + cb_ * n;
+  const double* const rc[3] = {r, r + n, r + 2 * n};
+  const double* const sc[3] = {r + 3 * n, r + 4 * n, r + 5 * n};
+  for (std::size_t q = 0; q < n; ++q) {
+    const Point3 a = xi_[q] - c_, b = x_[q] - x_c_;
+    r[q] = a.x;
+    r[n + q] = a.y;
+    r[2 * n + q] = a.z;
+    r[3 * n + q] = b.x;
+    r[4 * n + q] = b.y;
+    r[5 * n + q] = b.z;
+    wr[q] = w_[q];
+    br[q] = 1;
+  }
+  if (cg_ > 1)
+    for (int i = 0; i < 3; ++i)
+      for (std::size_t q = 0; q < n; ++q) wr[(1 + i) * n + q] = w_[q] * rc[i][q];
+  if (cb_ > 1)
+    for (int i = 0; i < 3; ++i) std::copy(sc[i], sc[i] + n, br + (1 + i) * n);
+  parent_rows(wr, cg_, n, rc);
+  parent_rows(br, cb_, n, sc);
+  const double* x[monomial_count3(2)];
+  const double* y[monomial_count3(kMaxLatticeDegree)];
+  for (int g = 0; g < cg_; ++g) x[g] = wr + g * n;
+  for (int b = 0; b < cb_; ++b) y[b] = br + b * n;
+  product_.resize(static_cast<std::size_t>(cg_) * cb_);
+  row_products(x, cg_, y, cb_, static_cast<int>(n), product_.data());
+  for (std::size_t i = 0; i < moment_.size(); ++i) moment_[i] += product_[i];
+  points_ += static_cast<long>(n);
+  xi_.clear();
+  x_.clear();
+  w_.clear();
+}
+
+void PointMoments3::add(const PointMoments3& other, double sign) {
+  for (std::size_t i = 0; i < moment_.size(); ++i) moment_[i] += sign * other.moment_[i];
+  points_ += other.points_;
+}
+
+void PointMoments3::element_moments(Point3 eta_c, const double* j, double* mu) const {
+  expansion_.assign(static_cast<std::size_t>(cb_) * cb_, 0.0);
+  double* t = expansion_.data();
+  t[0] = 1;
+  if (p_ > 0) {
+    const double c[3] = {eta_c.x, eta_c.y, eta_c.z};
+    for (int i = 0; i < 3; ++i) {  // eta_i = c_i + sum_k J_ik r_k
+      double* row = t + (1 + i) * cb_;
+      row[0] = c[i];
+      for (int k = 0; k < 3; ++k) row[1 + k] = j[3 * i + k];
+    }
+    const auto& parents = monomial_parents3();
+    const auto& times = monomial_times3();
+    const int below = monomial_count3(p_ - 1);  // the parents' terms are of degree < p
+    for (int a = 4; a < cb_; ++a) {
+      const double* from = t + parents[a].parent * cb_;
+      const double* lin = t + (1 + parents[a].axis) * cb_;
+      double* to = t + a * cb_;
+      for (int b = 0; b < below; ++b) {
+        const double f = from[b];
+        if (f == 0) continue;
+        to[b] += f * lin[0];
+        for (int k = 0; k < 3; ++k) to[times[b][k]] += f * lin[1 + k];
+      }
+    }
+  }
+  for (int k = 0; k < cg_; ++k) {
+    const double* m = moment_.data() + k * cb_;
+    for (int a = 0; a < cb_; ++a) {
+      const double* ta = t + a * cb_;
+      double s = 0;
+      for (int b = 0; b < cb_; ++b) s += ta[b] * m[b];
+      mu[k * cb_ + a] = s;
+    }
+  }
+}
+
+}  // namespace dlmfsi
