@@ -63,6 +63,7 @@ class ConicRegion {
   // The outer breakpoints and the tangents along t; false where sign q <= 0 on the whole polygon.
   bool breakpoints(int& n);
   void interval(double from, double to, int depth);
+  const LineRule& short_rule(double h, double scale, double rho) const;
   // the chord of the polygon along t at s (strictly between its ends), and the inner points on it
   void line(double at, double ws);
 
@@ -234,10 +235,27 @@ void ConicRegion::interval(double from, double to, int depth) {
     return;
   }
   const double span = s1 - s0;
-  for (size_t k = 0; k < outer_.nodes.size(); ++k) {
-    const double sigma = s0 + span * outer_.nodes[k];
-    line(position(sigma), outer_.weights[k] * std::fabs(span) * (centre >= 0 ? 2 * std::fabs(sigma) : 1.0));
+  const LineRule& rule = short_rule(std::fabs(span), centre >= 0 ? std::sqrt(smax_ - smin_) : smax_ - smin_, rho);
+  for (size_t k = 0; k < rule.nodes.size(); ++k) {
+    const double sigma = s0 + span * rule.nodes[k];
+    line(position(sigma), rule.weights[k] * std::fabs(span) * (centre >= 0 ? 2 * std::fabs(sigma) : 1.0));
   }
+}
+
+// Fewer points on an interval short against the polygon: the outer rule is chosen for an integrand of degree D
+// varying on the polygon's extent L (in the interval's variable), whose n-point rule on a span h is within
+// 2^D (h / 4 L)^(2 n) of it (the Bernstein ellipse of size 4 L / h, where the polynomial is at most 2^D times its
+// size on the interval); the tangents, as for the halving, need rho^-(2 n - k) <= 1e-14. The least n that meets
+// both and 1e-15 (at least 2, at most the outer rule's).
+const LineRule& ConicRegion::short_rule(double h, double scale, double rho) const {
+  const int full = static_cast<int>(outer_.nodes.size());
+  const double ratio = 4 * scale / h;
+  if (!(ratio > 100)) return outer_;
+  const double degree = 2.0 * full - 1;
+  double n = (15 + 0.30103 * degree) / (2 * std::log10(ratio));
+  if (rho < HUGE_VAL) n = std::max(n, 0.5 * (degree_ + 14 / std::log10(rho)));
+  const int points = std::max(2, static_cast<int>(std::ceil(n)));
+  return points >= full ? outer_ : line_rule(2 * points - 1);
 }
 
 void ConicRegion::line(double at, double ws) {

@@ -29,8 +29,10 @@ PointIntegrator3::PointIntegrator3(const Integrand3& integrand, CouplingReport& 
 
 double PointIntegrator3::integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) {
   begin_across();
+  band_moments_ = false;
   const double volume = gather(image, kf, piece);
   add_gathered(image.tetrahedron, kf, block);
+  if (band_moments_) add_band_moments(image, block);
   if (groups_used_ > 0) add_across(image.tetrahedron, block);
   return volume;
 }
@@ -64,6 +66,59 @@ void PointIntegrator3::add_across(const MappedTet& mt, LocalBlock& block) {
     jac_.swap(group.jac);
   }
   groups_used_ = 0;
+}
+
+void PointIntegrator3::start_band_moments(const ClippedImage3& image, const QuadraticTerms& terms) {
+  band_moments_ = terms.quadratic && weighted_sum_terms(image.tetrahedron) && integrand_.fluid.fitted();
+  if (!band_moments_) return;
+  moment_groups_used_ = 0;
+  face_moments_.reset(integrand_.multiplier.degree(), integrand_.fluid.degree(), image.sub_xi[0]);
+}
+
+void PointIntegrator3::add_column_moments(const ClippedImage3& image, const BandFace& face, Point3 xi, Point3 x0,
+                                          Point3 dd, double l, double column) {
+  const LineRule& along = line_rule(image.degree);
+  for (size_t k = 0; k < along.nodes.size(); ++k) {
+    const double t = along.nodes[k] * l;
+    face_moments_.add(xi + t * face.d, x0 + (t * dd + (0.5 * t * t) * face.dhd), along.weights[k] * column);
+  }
+}
+
+void PointIntegrator3::add_face_moments(const ClippedImage3& image, int kf, double sign) {
+  const PolynomialBasis3& fluid = integrand_.fluid;
+  const size_t size = static_cast<size_t>(monomial_count3(integrand_.multiplier.degree())) *
+                      static_cast<size_t>(monomial_count3(fluid.degree()));
+  if (tet_stamp_[kf] != tet_epoch_) {
+    tet_stamp_[kf] = tet_epoch_;
+    tet_group_[kf] = moment_groups_used_;
+    if (moment_groups_used_ == static_cast<int>(moment_groups_.size())) moment_groups_.emplace_back();
+    MomentGroup& group = moment_groups_[moment_groups_used_++];
+    group.kf = kf;
+    group.points = 0;
+    group.moments.assign(size, 0.0);
+  }
+  MomentGroup& group = moment_groups_[tet_group_[kf]];
+  element_moments_.resize(size);
+  face_moments_.element_moments(fluid.to_reference(kf, face_moments_.x_centre(), image.origin),
+                                fluid.inverse_jacobian(kf), element_moments_.data());
+  for (size_t i = 0; i < size; ++i) group.moments[i] += sign * element_moments_[i];
+  group.points += face_moments_.points();
+}
+
+// add_weighted_sums' terms from each fluid tetrahedron's moments.
+void PointIntegrator3::add_band_moments(const ClippedImage3& image, LocalBlock& block) {
+  const PolynomialBasis3& fluid = integrand_.fluid;
+  const int count = monomial_count3(integrand_.multiplier.degree());
+  size_weighted_terms();
+  for (int g = 0; g < moment_groups_used_; ++g) {
+    const MomentGroup& group = moment_groups_[g];
+    counts_.points += group.points;
+    block.enter_fluid_element(fluid_->dofs(group.kf));
+    fluid.sums_from_moments(group.kf, group.moments.data(), count, value_terms_.data(),
+                            gradients_ ? gradient_terms_.data() : nullptr);
+    add_weighted_terms(image.tetrahedron, face_moments_.centre(), block);
+  }
+  moment_groups_used_ = 0;
 }
 
 void PointIntegrator3::add_points(const MappedTet& mt, int kf, const PointData* points, int n, LocalBlock& block) {
@@ -273,6 +328,7 @@ double PointIntegrator3::gather_reference_side(const ClippedImage3& image, int k
       add_reference_point(image, kf, xi, x, d, measure * rp.weight);
     }
   });
+  start_band_moments(image, terms);
   gather_band(image, kf, piece, xi_corner, solid_det, terms);
   note_side_piece(kf, piece);
   return volume;
@@ -436,6 +492,7 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
     int first = s;
     for (int i = s + 1; i < e; ++i) first = order(piece.face_index[i]) < order(piece.face_index[first]) ? i : first;
     const int m = e - s, v0 = piece.face_index[first];
+    if (band_moments_) face_moments_.clear();
     for (int i = 1; i + 1 < m; ++i) {
       int v1 = piece.face_index[s + (first - s + i) % m], v2 = piece.face_index[s + (first - s + i + 1) % m];
       if (order(v2) < order(v1)) std::swap(v1, v2);
@@ -461,9 +518,17 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
         const double root = column_root(image, face, n, y, xi, x0, dd, rise);
         if (root == 0) continue;
         if (on_boundary && !(root < 0)) continue;
-        add_column(image, kf, face, xi, x0, dd, D, root, root * height * area * rp.weight);
+        if (band_moments_)
+          add_column_moments(image, face, xi, x0, dd, root, root * height * area * rp.weight);
+        else
+          add_column(image, kf, face, xi, x0, dd, D, root, root * height * area * rp.weight);
       }
     }
+    if (!band_moments_) continue;
+    face_moments_.settle();
+    if (face_moments_.points() == 0) continue;
+    add_face_moments(image, kf, 1);  // f_K in kf, -f_K' in the tetrahedron across (add_column's)
+    if (across >= 0) add_face_moments(image, across, -1);
   }
 }
 

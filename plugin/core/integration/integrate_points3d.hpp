@@ -132,22 +132,29 @@ class PointIntegrator3 : public PieceIntegrator3 {
   std::vector<unsigned> face_stamp_;  // 4 tet + face: == stamp_ once taken for the sub-face
   unsigned stamp_ = 0;
   std::vector<RegionPoint2> region_points_;
-  // Under weighted_sum_terms and a fitted fluid (a quadratic map) the side band's points are summed as moments
-  // (PointMoments3): a fluid face's columns in face_moments_, then into the moments of each of its two fluid
-  // tetrahedra (moment_groups_, grouped as the points across), added to the block once per image
-  // (add_side_moments), each point's fluid monomials formed once instead of once per tetrahedron.
-  bool side_moments_ = false;
+  // Under weighted_sum_terms and a fitted fluid (a quadratic map) the bands' points are summed as moments
+  // (PointMoments3): a fluid face's columns in face_moments_ (add_column_moments), taken to the reference
+  // coordinates of each of its two fluid tetrahedra and summed there per tetrahedron (moment_groups_, grouped as
+  // the points across: add_face_moments), added to the block once per piece or image (add_band_moments): each
+  // point's fluid monomials formed once, not once per tetrahedron.
+  bool band_moments_ = false;
   PointMoments3 face_moments_;
   struct MomentGroup {
     int kf = -1;
-    PointMoments3 moments;
+    long points = 0;
+    std::vector<double> moments;  // PointMoments3::element_moments' layout
   };
   std::vector<MomentGroup> moment_groups_;
   int moment_groups_used_ = 0;
   std::vector<double> element_moments_;
-  // face_moments_ times sign into fluid tetrahedron kf's moments.
-  void add_face_moments(int kf, double sign);
-  void add_side_moments(const ClippedImage3& image, LocalBlock& block);
+  // Whether the bands go as moments here; if so, empty moments about the sub-tetrahedron's corner 0 (in xi).
+  void start_band_moments(const ClippedImage3& image, const QuadraticTerms& terms);
+  // A column's points (add_column's) into face_moments_: X(xi + t d) = x0 + t dd + t^2 d^T H d / 2.
+  void add_column_moments(const ClippedImage3& image, const BandFace& face, Point3 xi, Point3 x0, Point3 dd,
+                          double l, double column);
+  // face_moments_ (settled) times sign into fluid tetrahedron kf's moments.
+  void add_face_moments(const ClippedImage3& image, int kf, double sign);
+  void add_band_moments(const ClippedImage3& image, LocalBlock& block);
   // The face of kf (corner: its vertices; j: the face opposite vertex j) whose plane holds the piece's face
   // whose vertices share the planes common (Piece3::planes' bits), or -1; on_boundary when that face is on the
   // sub-tetrahedron's boundary.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 
 #include "fe/lattice3d.hpp"
@@ -28,15 +29,14 @@ const std::vector<std::array<int, 3>>& monomial_times3() {
 
 }  // namespace
 
-void PointMoments3::reset(int m, int p, Point3 c, Point3 x_c) {
+void PointMoments3::reset(int m, int p, Point3 c) {
   m_ = m;
   p_ = p;
   cg_ = monomial_count3(m);
   cb_ = monomial_count3(p);
-  points_ = 0;
   c_ = c;
-  x_c_ = x_c;
-  moment_.assign(static_cast<std::size_t>(cg_) * cb_, 0.0);
+  moment_.resize(static_cast<std::size_t>(cg_) * cb_);
+  clear();
 }
 
 void PointMoments3::clear() {
@@ -66,6 +66,16 @@ void parent_rows(double* rows, int count, std::size_t n, const double* const (&r
 void PointMoments3::settle() {
   const std::size_t n = w_.size();
   if (n == 0) return;
+  if (points_ == 0) {  // x_c: the points' mean; scale_: their largest distance from it along an axis
+    Point3 sum;
+    for (const Point3& x : x_) sum = sum + x;
+    x_c_ = (1.0 / static_cast<double>(n)) * sum;
+    double spread = 0;
+    for (const Point3& x : x_)
+      spread = std::max({spread, std::fabs(x.x - x_c_.x), std::fabs(x.y - x_c_.y), std::fabs(x.z - x_c_.z)});
+    scale_ = spread > 0 ? spread : 1;
+  }
+  const double to_unit = 1 / scale_;
   // rows: W_g = w (xi - c)^g (cg_ rows), then B_b = (x - x_c)^b (cb_ rows), then r = xi - c and s = x - x_c
   rows_.resize((static_cast<std::size_t>(cg_ + cb_) + 6) * n);
   double* wr = rows_.data();
@@ -74,7 +84,7 @@ void PointMoments3::settle() {
   const double* const rc[3] = {r, r + n, r + 2 * n};
   const double* const sc[3] = {r + 3 * n, r + 4 * n, r + 5 * n};
   for (std::size_t q = 0; q < n; ++q) {
-    const Point3 a = xi_[q] - c_, b = x_[q] - x_c_;
+    const Point3 a = xi_[q] - c_, b = to_unit * (x_[q] - x_c_);
     r[q] = a.x;
     r[n + q] = a.y;
     r[2 * n + q] = a.z;
@@ -104,11 +114,6 @@ void PointMoments3::settle() {
   w_.clear();
 }
 
-void PointMoments3::add(const PointMoments3& other, double sign) {
-  for (std::size_t i = 0; i < moment_.size(); ++i) moment_[i] += sign * other.moment_[i];
-  points_ += other.points_;
-}
-
 void PointMoments3::element_moments(Point3 eta_c, const double* j, double* mu) const {
   expansion_.assign(static_cast<std::size_t>(cb_) * cb_, 0.0);
   double* t = expansion_.data();
@@ -118,7 +123,7 @@ void PointMoments3::element_moments(Point3 eta_c, const double* j, double* mu) c
     for (int i = 0; i < 3; ++i) {  // eta_i = c_i + sum_k J_ik r_k
       double* row = t + (1 + i) * cb_;
       row[0] = c[i];
-      for (int k = 0; k < 3; ++k) row[1 + k] = j[3 * i + k];
+      for (int k = 0; k < 3; ++k) row[1 + k] = j[3 * i + k] * scale_;
     }
     const auto& parents = monomial_parents3();
     const auto& times = monomial_times3();

@@ -1,12 +1,13 @@
 // Weighted sums over points regrouped as moments in the image's coordinates, for points that count in several
-// fluid tetrahedra (the side band's: each column in the two tetrahedra of its fluid face). A fluid function
+// fluid tetrahedra (the bands': each column in the two tetrahedra of its fluid face). A fluid function
 // fitted at degree p is a polynomial in its element's reference coordinates eta, affine in x:
 // eta = eta_c + J (x - x_c). So the sums that add_weighted_sums forms point by point,
 //   sum_q w_q (xi_q - c)^g phi(eta_q)   for every multiplier monomial g (|g| <= m) and fluid function phi,
 // follow, once per element whatever the number of points, from the moments
-//   M[g][b] = sum_q w_q (xi_q - c)^g (x_q - x_c)^b,   |b| <= p:
-// (eta_c + J r)^a is a polynomial in r, T[a][b] its coefficients (monomial a its parent's times one coordinate,
-// monomial_parents3), and the element's moments are mu[g][a] = sum_b T[a][b] M[g][b].
+//   M[g][b] = sum_q w_q (xi_q - c)^g r_q^b,   r = (x - x_c) / L,   |b| <= p,
+// L the points' spread about x_c (so that r is of size 1 whatever the mesh's units): (eta_c + J L r)^a is a
+// polynomial in r, T[a][b] its coefficients (monomial a its parent's times one coordinate, monomial_parents3),
+// and the element's moments are mu[g][a] = sum_b T[a][b] M[g][b].
 #pragma once
 #include <vector>
 
@@ -16,8 +17,9 @@ namespace dlmfsi {
 
 class PointMoments3 {
  public:
-  // Empty moments of multiplier degree m and fluid degree p about c (in xi) and x_c (in x).
-  void reset(int m, int p, Point3 c, Point3 x_c);
+  // Empty moments of multiplier degree m and fluid degree p about c (in xi); x_c: the mean x of the points of
+  // the first settle(), L their spread.
+  void reset(int m, int p, Point3 c);
   // A point (kept until settle()).
   void add(Point3 xi, Point3 x, double w) {
     xi_.push_back(xi);
@@ -26,21 +28,20 @@ class PointMoments3 {
   }
   // The points added since into the moments, as products of rows along them (row_products).
   void settle();
-  // Empty again, about the same centres.
+  // Empty again, about the same c.
   void clear();
-  // this += sign other (the same degrees and centres; other settled).
-  void add(const PointMoments3& other, double sign);
   long points() const { return points_ + static_cast<long>(w_.size()); }
   Point3 centre() const { return c_; }
   Point3 x_centre() const { return x_c_; }
-  // mu[g nm + a] (nm = monomial_count3(p)): the moments in the element coordinates eta = eta_c + J (x - x_c),
-  // J = d eta / d x row-major, eta_c those of x_c.
+  // mu[g nm + a] (nm = monomial_count3(p)): the moments (settled) in the element coordinates
+  // eta = eta_c + J (x - x_c), J = d eta / d x row-major, eta_c those of x_c.
   void element_moments(Point3 eta_c, const double* j, double* mu) const;
 
  private:
   int m_ = 0, p_ = 0, cg_ = 1, cb_ = 1;
   long points_ = 0;
   Point3 c_, x_c_;
+  double scale_ = 1;  // L
   std::vector<double> moment_;  // M[g cb + b]
   std::vector<Point3> xi_, x_;  // the points not settled
   std::vector<double> w_;

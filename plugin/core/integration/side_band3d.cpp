@@ -69,49 +69,11 @@ void PointIntegrator3::finish(const ClippedImage3& image, LocalBlock& block) {
   point_jacobians_ = gradients_ && !weighted_sum_terms(mt);
   QuadraticTerms terms;
   terms.quadratic = mt.reference_hessian(terms.hessian);
-  side_moments_ = terms.quadratic && weighted_sum_terms(mt) && integrand_.fluid.fitted();
-  if (side_moments_) {
-    moment_groups_used_ = 0;
-    face_moments_.reset(integrand_.multiplier.degree(), integrand_.fluid.degree(), image.sub_xi[0],
-                        reference_position(image, image.sub_xi[0]));
-  }
+  start_band_moments(image, terms);
   for (int sub = 0; sub < 4; ++sub)
     if (on_face_[sub] >= 0 && !side_kf_[sub].empty()) side_band(image, sub, terms);
-  if (side_moments_) add_side_moments(image, block);
+  if (band_moments_) add_band_moments(image, block);
   if (groups_used_ > 0) add_across(mt, block);
-}
-
-void PointIntegrator3::add_face_moments(int kf, double sign) {
-  if (tet_stamp_[kf] != tet_epoch_) {
-    tet_stamp_[kf] = tet_epoch_;
-    tet_group_[kf] = moment_groups_used_;
-    if (moment_groups_used_ == static_cast<int>(moment_groups_.size())) moment_groups_.emplace_back();
-    MomentGroup& group = moment_groups_[moment_groups_used_++];
-    group.kf = kf;
-    group.moments.reset(integrand_.multiplier.degree(), integrand_.fluid.degree(), face_moments_.centre(),
-                        face_moments_.x_centre());
-  }
-  moment_groups_[tet_group_[kf]].moments.add(face_moments_, sign);
-}
-
-// Each fluid tetrahedron's moments taken to its reference coordinates, then add_weighted_sums' terms from them.
-void PointIntegrator3::add_side_moments(const ClippedImage3& image, LocalBlock& block) {
-  const PolynomialBasis3& fluid = integrand_.fluid;
-  const int count = monomial_count3(integrand_.multiplier.degree());
-  element_moments_.resize(static_cast<size_t>(count) * monomial_count3(fluid.degree()));
-  size_weighted_terms();
-  for (int g = 0; g < moment_groups_used_; ++g) {
-    const MomentGroup& group = moment_groups_[g];
-    const PointMoments3& m = group.moments;
-    counts_.points += m.points();
-    block.enter_fluid_element(fluid_->dofs(group.kf));
-    m.element_moments(fluid.to_reference(group.kf, m.x_centre(), image.origin), fluid.inverse_jacobian(group.kf),
-                      element_moments_.data());
-    fluid.sums_from_moments(group.kf, element_moments_.data(), count, value_terms_.data(),
-                            gradients_ ? gradient_terms_.data() : nullptr);
-    add_weighted_terms(image.tetrahedron, m.centre(), block);
-  }
-  moment_groups_used_ = 0;
 }
 
 const std::vector<PointIntegrator3::NearFace>& PointIntegrator3::near_faces(int kf) {
@@ -284,6 +246,23 @@ void PointIntegrator3::face_band(const ClippedImage3& image, int sub, const Quad
     a[m] = dot(n, s.y[m] - y);
     size = std::max(size, dot(s.y[m] - y, s.y[m] - y));
   }
+  // Under a quadratic map q - a = n . (X - A) = -1/2 sum over the sub-face's edges ij of lambda_i lambda_j h_ij,
+  // h_ij = n . e_ij^T H e_ij (X - A vanishes at its corners, and along an edge is -t (1 - t) e^T H e / 2): where
+  // the three h have one sign, so has q - a all over the sub-face, and the side of a = 0 that needs the other
+  // sign (a < 0 needs q > a, a > 0 needs q < a) has no band.
+  bool empty_side[2] = {false, false};  // a < 0, a > 0
+  if (terms.quadratic) {
+    double h_lo = 0, h_hi = 0;
+    for (int m = 0; m < 3; ++m) {
+      const int i = (sub + 1 + m) & 3, k = (sub + 1 + (m + 1) % 3) & 3;
+      const double h = dot(n, s.edge_hessians[edge_index(std::min(i, k), std::max(i, k))]);
+      h_lo = m == 0 ? h : std::min(h_lo, h);
+      h_hi = m == 0 ? h : std::max(h_hi, h);
+    }
+    empty_side[0] = h_lo >= 0;
+    empty_side[1] = h_hi <= 0;
+    if (empty_side[0] && empty_side[1]) return;  // q = a: no band
+  }
   const double lo = std::min({a[0], a[1], a[2]}), hi = std::max({a[0], a[1], a[2]});
   const double scale = std::sqrt(dot(n, n) * size);
   if (hi < -(reach + 1e-12 * scale) || lo > reach + 1e-12 * scale) return;
@@ -322,8 +301,9 @@ void PointIntegrator3::face_band(const ClippedImage3& image, int sub, const Quad
   }
   if (m < 3) return;
   ColumnFrom column{face, n, y, rise, dot(face.d, s.nu), f.face.tet};
-  if (side_moments_) face_moments_.clear();
+  if (band_moments_) face_moments_.clear();
   for (int side = -1; side <= 1; side += 2) {  // a < 0: the band where q > 0; a > 0: where q < 0
+    if (empty_side[(side + 1) / 2]) continue;
     CutVertex part[12];
     const int kept = keep_side(poly[0], m, 0, side, part);
     if (kept < 3) continue;
@@ -334,10 +314,10 @@ void PointIntegrator3::face_band(const ClippedImage3& image, int sub, const Quad
     }
     band_region(image, terms, s, column, uv, kept, -side);
   }
-  if (side_moments_) face_moments_.settle();
-  if (side_moments_ && face_moments_.points() > 0) {  // f_K + in K, f_K' - in K' across
-    add_face_moments(f.face.tet, 1);
-    if (f.face.across >= 0) add_face_moments(f.face.across, -1);
+  if (band_moments_) face_moments_.settle();
+  if (band_moments_ && face_moments_.points() > 0) {  // f_K + in K, f_K' - in K' across
+    add_face_moments(image, f.face.tet, 1);
+    if (f.face.across >= 0) add_face_moments(image, f.face.across, -1);
   }
 }
 
@@ -380,12 +360,8 @@ void PointIntegrator3::band_region(const ClippedImage3& image, const QuadraticTe
     const double root = column_root(image, c.face, c.n, c.y, xi, x, dd, c.rise);
     if (!std::isfinite(root) || root == 0) continue;
     const double column = rp.weight * std::fabs(root) * c.d_in * s.solid_det;
-    if (side_moments_) {  // X(xi + t d) = x + t dd + t^2 d^T H d / 2 along the column (add_column's points)
-      const LineRule& along = line_rule(image.degree);
-      for (size_t k = 0; k < along.nodes.size(); ++k) {
-        const double t = along.nodes[k] * root;
-        face_moments_.add(xi + t * d, x + (t * dd + (0.5 * t * t) * c.face.dhd), along.weights[k] * column);
-      }
+    if (band_moments_) {
+      add_column_moments(image, c.face, xi, x, dd, root, column);
       continue;
     }
     add_column(image, -1, c.face, xi, x, dd, D, root, column, c.tet);
