@@ -36,10 +36,11 @@ int roots_inside(double a, double b, double c, double lo, double hi, double (&ro
 }
 
 // rho of the Bernstein ellipse (foci -1 and 1) through x: Gauss-Legendre on [-1, 1] converges like rho^-2n for a
-// function analytic inside it.
+// function analytic inside it. Its semi-axes a and b: 2 a = |x - 1| + |x + 1| and a^2 - b^2 = 1, rho = a + b.
 double ellipse(Complex x) {
-  const double size = std::abs(x + std::sqrt(x - 1.0) * std::sqrt(x + 1.0));
-  return size >= 1 ? size : 1 / size;
+  const double re = x.real(), im2 = x.imag() * x.imag();
+  const double a = 0.5 * (std::sqrt((re - 1) * (re - 1) + im2) + std::sqrt((re + 1) * (re + 1) + im2));
+  return a + std::sqrt(std::max(0.0, (a - 1) * (a + 1)));
 }
 
 struct Breakpoint {
