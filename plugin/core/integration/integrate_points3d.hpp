@@ -132,8 +132,8 @@ class PointIntegrator3 : public PieceIntegrator3 {
   std::vector<unsigned> face_stamp_;  // 4 tet + face: == stamp_ once taken for the sub-face
   unsigned stamp_ = 0;
   std::vector<RegionPoint2> region_points_;
-  // Under weighted_sum_terms and a fitted fluid (a quadratic map) the bands' points are summed as moments
-  // (PointMoments3): a fluid face's columns in face_moments_ (add_column_moments), taken to the reference
+  // Under weighted_sum_terms and a fluid fitted at degree <= 2 (a quadratic map) the bands' points are summed as
+  // moments (PointMoments3): a fluid face's columns in face_moments_ (add_column_moments), taken to the reference
   // coordinates of each of its two fluid tetrahedra and summed there per tetrahedron (moment_groups_, grouped as
   // the points across: add_face_moments), added to the block once per piece or image (add_band_moments): each
   // point's fluid monomials formed once, not once per tetrahedron.
