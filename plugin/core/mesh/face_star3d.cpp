@@ -9,22 +9,36 @@ void faces_touching(const Mesh3& mesh, int k, std::vector<MeshFace3>& out) {
   out.clear();
   const auto& own = mesh.tetrahedra[k];
   // The tetrahedra around each vertex v of k: from k across the faces that hold v (a face holds v unless v is
-  // the tetrahedron's vertex opposite it).
-  std::vector<int> star, stack;
-  star.reserve(128);
-  stack.reserve(64);
+  // the tetrahedron's vertex opposite it). A tetrahedron is met once per vertex (seen == that vertex's epoch) and
+  // listed once (listed == the call's epoch): stamps per tetrahedron, kept per thread.
+  thread_local std::vector<unsigned> seen, listed;
+  thread_local unsigned epoch = 0;
+  thread_local std::vector<int> star, stack;
+  const size_t tets = static_cast<size_t>(mesh.size());
+  if (seen.size() != tets || epoch > 0xFFFFFFF0u) {
+    seen.assign(tets, 0);
+    listed.assign(tets, 0);
+    epoch = 0;
+  }
+  const unsigned call = ++epoch;
+  star.clear();
   for (int i = 0; i < 4; ++i) {
     const int v = own[i];
-    const size_t first = star.size();
+    const unsigned round = ++epoch;
     stack.assign(1, k);
+    seen[k] = round;
     while (!stack.empty()) {
       const int t = stack.back();
       stack.pop_back();
-      if (std::find(star.begin() + static_cast<std::ptrdiff_t>(first), star.end(), t) != star.end()) continue;
-      star.push_back(t);
+      if (listed[t] != call) {
+        listed[t] = call;
+        star.push_back(t);
+      }
       for (int j = 0; j < 4; ++j) {
         const int across = mesh.neighbours[t][j];
-        if (mesh.tetrahedra[t][j] != v && across >= 0) stack.push_back(across);
+        if (mesh.tetrahedra[t][j] == v || across < 0 || seen[across] == round) continue;
+        seen[across] = round;
+        stack.push_back(across);
       }
     }
   }
@@ -36,8 +50,10 @@ void faces_touching(const Mesh3& mesh, int k, std::vector<MeshFace3>& out) {
                              mesh.tetrahedra[t][m] == own[2] || mesh.tetrahedra[t][m] == own[3]);
       if (!touches) continue;
       const int across = mesh.neighbours[t][j];
+      // named by the lower-numbered tetrahedron: taken from it when it is in the star too (it then holds the face)
+      if (across >= 0 && across < t && listed[across] == call) continue;
       MeshFace3 f{t, j, across};
-      if (across >= 0 && across < t) {  // named by the lower-numbered tetrahedron
+      if (across >= 0 && across < t) {
         f.tet = across;
         f.across = t;
         for (int g = 0; g < 4; ++g)
@@ -48,9 +64,6 @@ void faces_touching(const Mesh3& mesh, int k, std::vector<MeshFace3>& out) {
   }
   std::sort(out.begin(), out.end(),
             [](const MeshFace3& a, const MeshFace3& b) { return a.tet != b.tet ? a.tet < b.tet : a.face < b.face; });
-  out.erase(std::unique(out.begin(), out.end(),
-                        [](const MeshFace3& a, const MeshFace3& b) { return a.tet == b.tet && a.face == b.face; }),
-            out.end());
 }
 
 }  // namespace dlmfsi
