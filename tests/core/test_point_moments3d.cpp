@@ -73,7 +73,8 @@ TEST(PointMoments3, ElementMomentsAreThePointSumsInTheElementsCoordinates) {
       const std::vector<double> expected = direct(points, m, p, c, centre, eta_centre, j);
       double scale = 0;
       for (double v : expected) scale = std::max(scale, std::fabs(v));
-      for (size_t i = 0; i < mu.size(); ++i) EXPECT_NEAR(mu[i], expected[i], 1e-13 * scale) << m << " " << p << " " << i;
+      for (size_t i = 0; i < mu.size(); ++i)
+        EXPECT_NEAR(mu[i], expected[i], 1e-13 * scale) << m << " " << p << " " << i;
     }
 }
 

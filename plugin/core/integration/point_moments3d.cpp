@@ -76,7 +76,7 @@ void PointMoments3::settle() {
     scale_ = spread > 0 ? spread : 1;
   }
   const double to_unit = 1 / scale_;
-  // rows: W_g = w (xi - c)^g (cg_ rows), then B_b = (x - x_c)^b (cb_ rows), then r = xi - c and s = x - x_c
+  // rows: W_g = w (xi - c)^g (cg_ rows), then r^b (cb_ rows), then xi - c and r = (x - x_c) / L
   rows_.resize((static_cast<std::size_t>(cg_ + cb_) + 6) * n);
   double* wr = rows_.data();
   double* br = wr + cg_ * n;
@@ -101,7 +101,7 @@ void PointMoments3::settle() {
     for (int i = 0; i < 3; ++i) std::copy(sc[i], sc[i] + n, br + (1 + i) * n);
   parent_rows(wr, cg_, n, rc);
   parent_rows(br, cb_, n, sc);
-  const double* x[monomial_count3(2)];
+  const double* x[monomial_count3(kMaxLatticeDegree)];
   const double* y[monomial_count3(kMaxLatticeDegree)];
   for (int g = 0; g < cg_; ++g) x[g] = wr + g * n;
   for (int b = 0; b < cb_; ++b) y[b] = br + b * n;
