@@ -37,6 +37,18 @@ double PointIntegrator3::integrate(const ClippedImage3& image, int kf, const Pie
   return volume;
 }
 
+template <class Group>
+Group& PointIntegrator3::group_of(int kf, std::vector<Group>& groups, int& used) {
+  if (tet_stamp_[kf] == tet_epoch_) return groups[tet_group_[kf]];
+  tet_stamp_[kf] = tet_epoch_;
+  tet_group_[kf] = used;
+  if (used == static_cast<int>(groups.size())) groups.emplace_back();
+  Group& group = groups[used++];
+  group.kf = kf;
+  group.fresh = true;
+  return group;
+}
+
 void PointIntegrator3::begin_across() {
   groups_used_ = 0;
   const size_t tets = static_cast<size_t>(fluid_ ? fluid_->mesh().size() : 0);
@@ -91,16 +103,12 @@ void PointIntegrator3::add_face_moments(const ClippedImage3& image, int kf, doub
   const PolynomialBasis3& fluid = integrand_.fluid;
   const size_t size = static_cast<size_t>(monomial_count3(integrand_.multiplier.degree())) *
                       static_cast<size_t>(monomial_count3(fluid.degree()));
-  if (tet_stamp_[kf] != tet_epoch_) {
-    tet_stamp_[kf] = tet_epoch_;
-    tet_group_[kf] = moment_groups_used_;
-    if (moment_groups_used_ == static_cast<int>(moment_groups_.size())) moment_groups_.emplace_back();
-    MomentGroup& group = moment_groups_[moment_groups_used_++];
-    group.kf = kf;
+  MomentGroup& group = group_of(kf, moment_groups_, moment_groups_used_);
+  if (group.fresh) {
+    group.fresh = false;
     group.points = 0;
     group.moments.assign(size, 0.0);
   }
-  MomentGroup& group = moment_groups_[tet_group_[kf]];
   element_moments_.resize(size);
   face_moments_.element_moments(fluid.to_reference(kf, face_moments_.x_centre(), image.origin),
                                 fluid.inverse_jacobian(kf), element_moments_.data());
@@ -218,18 +226,14 @@ inline void PointIntegrator3::add_jacobian(const ClippedImage3& image, const Poi
 
 inline void PointIntegrator3::add_across_point(int kf, Point3 eta, Point3 xi, double weight,
                                                const std::array<double, 9>& jac) {
-  if (tet_stamp_[kf] != tet_epoch_) {
-    tet_stamp_[kf] = tet_epoch_;
-    tet_group_[kf] = groups_used_;
-    if (groups_used_ == static_cast<int>(across_.size())) across_.emplace_back();
-    AcrossGroup& group = across_[groups_used_++];
-    group.kf = kf;
+  AcrossGroup& group = group_of(kf, across_, groups_used_);
+  if (group.fresh) {
+    group.fresh = false;
     group.eta.clear();
     group.xi.clear();
     group.weight.clear();
     group.jac.clear();
   }
-  AcrossGroup& group = across_[tet_group_[kf]];
   group.eta.push_back(eta);
   group.xi.push_back(xi);
   group.weight.push_back(weight);

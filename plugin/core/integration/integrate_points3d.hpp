@@ -141,6 +141,7 @@ class PointIntegrator3 : public PieceIntegrator3 {
   PointMoments3 face_moments_;
   struct MomentGroup {
     int kf = -1;
+    bool fresh = false;  // just taken for kf (group_of): its moments to be zeroed
     long points = 0;
     std::vector<double> moments;  // PointMoments3::element_moments' layout
   };
@@ -241,6 +242,7 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // tet_stamp_[kf] == tet_epoch_; groups_used_ of across_ are in use, the others keep their room.
   struct AcrossGroup {
     int kf = -1;
+    bool fresh = false;  // just taken for kf (group_of): its points to be cleared
     std::vector<Point3> eta, xi;
     std::vector<double> weight;
     std::vector<std::array<double, 9>> jac;
@@ -252,6 +254,9 @@ class PointIntegrator3 : public PieceIntegrator3 {
   unsigned tet_epoch_ = 0;
   // No group in use, a fresh epoch (before the points of an image's piece or of its side band).
   void begin_across();
+  // Fluid tetrahedron kf's group among groups[0, used): the one taken in this epoch, else the next (fresh).
+  template <class Group>
+  Group& group_of(int kf, std::vector<Group>& groups, int& used);
   // A point of fluid tetrahedron kf among those across, with its dX/ds where the points carry it.
   void add_across_point(int kf, Point3 eta, Point3 xi, double weight, const std::array<double, 9>& jac);
   void add_across(const MappedTet& mt, LocalBlock& block);
