@@ -247,16 +247,17 @@ void ConicRegion::interval(double from, double to, int depth) {
 // varying on the polygon's extent L (in the interval's variable), whose n-point rule on a span h is within
 // 2^D (h / 4 L)^(2 n) of it (the Bernstein ellipse of size 4 L / h, where the polynomial is at most 2^D times its
 // size on the interval); the tangents, as for the halving, need rho^-(2 n - k) <= 1e-14. The least n that meets
-// both and 1e-15 (at least 2, at most the outer rule's).
+// both and 1e-15 (at least 2, at most the outer rule's; the outer rule where the halving stopped short of rho_min).
 const LineRule& ConicRegion::short_rule(double h, double scale, double rho) const {
   const int full = static_cast<int>(outer_.nodes.size());
   const double ratio = 4 * scale / h;
   if (!(ratio > 100)) return outer_;
+  if (!(rho > rho_min_)) return outer_;  // halved 40 times and still near a tangent: the full rule
   const double degree = 2.0 * full - 1;
   double n = (15 + 0.30103 * degree) / (2 * std::log10(ratio));
   if (rho < HUGE_VAL) n = std::max(n, 0.5 * (degree_ + 14 / std::log10(rho)));
-  const int points = std::max(2, static_cast<int>(std::ceil(n)));
-  return points >= full ? outer_ : line_rule(2 * points - 1);
+  if (!(n < full)) return outer_;
+  return line_rule(2 * std::max(2, static_cast<int>(std::ceil(n))) - 1);
 }
 
 void ConicRegion::line(double at, double ws) {
