@@ -412,15 +412,11 @@ bool PointIntegrator3::band_face(const ClippedImage3& image, int kf, int j, int 
                                   BandFace& face, Point3& n, double& rise, double& height) const {
   const MappedTet& mt = image.tetrahedron;
   n = face_normal(kf, j);
-  // dy/dxi of the straight image: E_y E_xi^-1 (edges from corner 0); grad_xi (n . A) = E_xi^-T E_y^T n
-  const Point3 ey[3] = {image.sub_y[1] - image.sub_y[0], image.sub_y[2] - image.sub_y[0],
-                        image.sub_y[3] - image.sub_y[0]};
-  const Point3 ex[3] = {image.sub_xi[1] - image.sub_xi[0], image.sub_xi[2] - image.sub_xi[0],
-                        image.sub_xi[3] - image.sub_xi[0]};
-  const double ex_det = dot(ex[0], cross(ex[1], ex[2]));
-  const Point3 w{dot(ey[0], n), dot(ey[1], n), dot(ey[2], n)};  // E_y^T n
+  // grad_xi (n . A) = E_xi^-T E_y^T n (the straight image's edges from corner 0: straight_)
+  const StraightImage& a = straight_;
+  const Point3 w{dot(a.ey[0], n), dot(a.ey[1], n), dot(a.ey[2], n)};  // E_y^T n
   // z = E_xi^-T w: z . ex[i] = w_i, by the cofactors of E_xi
-  const Point3 z = (1 / ex_det) * (w.x * cross(ex[1], ex[2]) + w.y * cross(ex[2], ex[0]) + w.z * cross(ex[0], ex[1]));
+  const Point3 z = (1 / a.det) * (w.x * a.cofactor[0] + w.y * a.cofactor[1] + w.z * a.cofactor[2]);
   const double grad = std::sqrt(dot(z, z));
   if (!(grad > 0)) return false;
   const Point3 axis[3] = {mt.reference_direction(0), mt.reference_direction(1), mt.reference_direction(2)};

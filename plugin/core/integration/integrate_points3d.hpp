@@ -30,8 +30,8 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // fluid: its mesh's adjacency and dofs, for the band on the reference side where a sub-tetrahedron's face lies
   // in a fluid face plane (gather_band); without it such faces are taken as faces inside the sub-tetrahedron.
   PointIntegrator3(const Integrand3& integrand, CouplingReport& counts, const FluidSide3* fluid = nullptr);
-  // start: on the reference side, the sub-tetrahedron's faces on the solid tetrahedron's; finish: the band where it
-  // crosses them, once the image's pieces are done (side_band3d.cpp).
+  // start: on the reference side, the sub-tetrahedron's straight image and its faces on the solid tetrahedron's;
+  // finish: the band where it crosses them, once the image's pieces are done (side_band3d.cpp).
   void start(const ClippedImage3& image) override;
   double integrate(const ClippedImage3& image, int kf, const Piece3& piece, LocalBlock& block) override;
   void finish(const ClippedImage3& image, LocalBlock& block) override;
@@ -102,8 +102,7 @@ class PointIntegrator3 : public PieceIntegrator3 {
   struct SideFace {  // a sub-face, its frame and X on it (side_face)
     Point3 xi[3], y[3], nu, o, e1, e2, x, d[3], h_e1[3], h_e2[3], x_u, x_v, x_uu, x_uv, x_vv, lo, hi;
     Point3 edge_hessians[6];  // e^T H e along the sub-tetrahedron's edges
-    Point3 ex[3], ey[3];      // the sub-tetrahedron's edges from its corner 0, in xi and their images
-    double ex_det, solid_det;  // det of ex; 6 |solid tetrahedron|
+    double solid_det;         // 6 |solid tetrahedron|
     bool whole;                // the sub-tetrahedron is the solid tetrahedron (subdivide 0)
   };
   struct NearFace {  // a fluid face near a fluid tetrahedron, its corners, box and outward normal (face_normal)
@@ -123,6 +122,14 @@ class PointIntegrator3 : public PieceIntegrator3 {
   void band_region(const ClippedImage3& image, const QuadraticTerms& terms, const SideFace& s, const ColumnFrom& c,
                    const double (*uv)[2], int m, int sign);
   const std::vector<NearFace>& near_faces(int kf);
+  // The sub-tetrahedron's straight image A on the reference side (start): its edges from corner 0 in y, the
+  // cofactors of its edges in xi (cofactor[i] = ex_(i+1) x ex_(i+2)) and det E_xi, from which dA/dxi = E_y E_xi^-1
+  // and grad_xi (n . A) = E_xi^-T E_y^T n follow (band_face, face_band), once per image.
+  struct StraightImage {
+    Point3 ey[3], cofactor[3];
+    double det = 0;
+  };
+  StraightImage straight_;
   int side_faces_ = 0, on_face_[4] = {-1, -1, -1, -1};  // on_face_[i]: T's face the sub-face opposite i lies on
   std::vector<int> side_kf_[4];
   std::vector<int> near_kf_;

@@ -40,7 +40,15 @@ void PointIntegrator3::start(const ClippedImage3& image) {
     side_kf_[sub].clear();
     on_face_[sub] = -1;
   }
-  if (!image.reference_side || !fluid_ || !image.sub_xi) return;
+  if (!image.reference_side || !image.sub_xi) return;
+  const Point3 ex[3] = {image.sub_xi[1] - image.sub_xi[0], image.sub_xi[2] - image.sub_xi[0],
+                        image.sub_xi[3] - image.sub_xi[0]};
+  for (int i = 0; i < 3; ++i) {
+    straight_.ey[i] = image.sub_y[i + 1] - image.sub_y[0];
+    straight_.cofactor[i] = cross(ex[(i + 1) % 3], ex[(i + 2) % 3]);
+  }
+  straight_.det = dot(ex[0], straight_.cofactor[0]);
+  if (!fluid_) return;
   for (int sub = 0; sub < 4; ++sub) {  // the sub-tetrahedron's face opposite its corner sub lies on T's face i
     for (int i = 0; i < 4 && on_face_[sub] < 0; ++i) {
       bool all = true;
@@ -126,11 +134,6 @@ void PointIntegrator3::side_face(const ClippedImage3& image, int sub, const Quad
     s.xi[m] = image.sub_xi[corner[m]];
     s.y[m] = image.sub_y[corner[m]] - image.origin;
   }
-  for (int i = 0; i < 3; ++i) {
-    s.ex[i] = image.sub_xi[i + 1] - image.sub_xi[0];
-    s.ey[i] = image.sub_y[i + 1] - image.sub_y[0];
-  }
-  s.ex_det = dot(s.ex[0], cross(s.ex[1], s.ex[2]));
   const MappedTet& mt = image.tetrahedron;
   s.solid_det = volume6(mt.solid[0], mt.solid[1], mt.solid[2], mt.solid[3]);
   s.whole = true;
@@ -276,10 +279,10 @@ void PointIntegrator3::face_band(const ClippedImage3& image, int sub, const Quad
   double rise, height;
   if (!band_face(image, f.face.tet, f.face.face, f.face.across, terms, face, n, rise, height)) return;
   // a column from xi starts at xi - (a / rise) d, whose straight image is A(xi) - (a / rise) Y_d, Y_d = dA/dxi d
-  const Point3 (&ex)[3] = s.ex;
-  const Point3 yd = (dot(face.d, cross(ex[1], ex[2])) / s.ex_det) * s.ey[0] +
-                    (dot(face.d, cross(ex[2], ex[0])) / s.ex_det) * s.ey[1] +
-                    (dot(face.d, cross(ex[0], ex[1])) / s.ex_det) * s.ey[2];
+  const StraightImage& st = straight_;
+  const Point3 yd = (dot(face.d, st.cofactor[0]) / st.det) * st.ey[0] +
+                    (dot(face.d, st.cofactor[1]) / st.det) * st.ey[1] +
+                    (dot(face.d, st.cofactor[2]) / st.det) * st.ey[2];
   const double yd_n = dot(n, yd);
   if (!(std::fabs(yd_n) > 0)) return;
   const Point3 fv[3] = {y, f.v[1] - image.origin, f.v[2] - image.origin};
