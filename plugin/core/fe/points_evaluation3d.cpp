@@ -292,6 +292,23 @@ void PolynomialTerms3::sums_from_moments(const int* twin, const double* j, const
   if (gradient_sum) copy_twins(twin, width_, 3 * static_cast<std::size_t>(count), gradient_sum);
 }
 
+void weighted_monomial_rows3(int degree, const Point3* r, const double* w, std::size_t n, double* rows) {
+  for (std::size_t q = 0; q < n; ++q) rows[q] = w ? w[q] : 1;
+  if (degree == 0) return;
+  for (std::size_t q = 0; q < n; ++q) {
+    rows[n + q] = w ? w[q] * r[q].x : r[q].x;
+    rows[2 * n + q] = w ? w[q] * r[q].y : r[q].y;
+    rows[3 * n + q] = w ? w[q] * r[q].z : r[q].z;
+  }
+  const auto& parents = monomial_parents3();
+  for (int m = 4; m < monomial_count3(degree); ++m) {
+    const double* from = rows + parents[m].parent * n;
+    double* to = rows + m * n;
+    const int axis = parents[m].axis;
+    for (std::size_t q = 0; q < n; ++q) to[q] = from[q] * (axis == 0 ? r[q].x : axis == 1 ? r[q].y : r[q].z);
+  }
+}
+
 void weighted_sums_polynomials3(int degree, const double* coef, std::size_t width, const double* j, const Point3* xi,
                                 const double* weight, int count, int n, double* value_sum, double* gradient_sum) {
   thread_local PolynomialTerms3 terms;

@@ -81,6 +81,10 @@ class PolynomialTerms3 {
 // The same for one call (the terms formed on the way): a fit used once.
 void evaluate_polynomials3(int degree, const double* coef, std::size_t width, const int* twin, const double* j,
                            const Point3* xi, int n, double* value, double* gradient);
+// rows[m n + q] = w[q] r_q^m for the monomials m of degree <= degree (lattice3d's order; w null: 1), n points:
+// rows 1 to 3 the coordinates, each further one its parent's times one coordinate (monomial_parents3).
+void weighted_monomial_rows3(int degree, const Point3* r, const double* w, std::size_t n, double* rows);
+
 void weighted_sums_polynomials3(int degree, const double* coef, std::size_t width, const double* j, const Point3* xi,
                                 const double* weight, int count, int n, double* value_sum, double* gradient_sum);
 // PolynomialTerms3::sums_from_moments of width polynomials coef (no twins).

@@ -12,6 +12,7 @@
 #include "map/pull_back3d.hpp"
 #include "fe/rules.hpp"
 #include "fe/lattice3d.hpp"
+#include "fe/points_evaluation3d.hpp"
 #include "fe/weighted_sum.hpp"
 #include "integration/reference_tet.hpp"
 
@@ -688,25 +689,10 @@ void PointIntegrator3::add_weighted_sums(const MappedTet& mt, int kf, int n, Loc
   size_weighted_terms();
   const Point3 c = xi_[0];
   double* w = sum_weights_.data();
-  // W_0 = w, W of the degree-1 monomials w r_i, each further one its parent's times one coordinate of r
-  for (int q = 0; q < n; ++q) w[q] = weight_[q];
-  if (degree > 0)
-    for (int q = 0; q < n; ++q) {
-      const Point3 r = xi_[q] - c;
-      w[nn + q] = weight_[q] * r.x;
-      w[2 * nn + q] = weight_[q] * r.y;
-      w[3 * nn + q] = weight_[q] * r.z;
-    }
-  const auto& parents = monomial_parents3();
-  for (int g = 4; g < count; ++g) {
-    const double* from = w + parents[g].parent * nn;
-    double* to = w + g * nn;
-    const int axis = parents[g].axis;
-    for (int q = 0; q < n; ++q) {
-      const Point3 r = xi_[q] - c;
-      to[q] = from[q] * (axis == 0 ? r.x : axis == 1 ? r.y : r.z);
-    }
-  }
+  // W_g = w r^g, r = xi - c
+  sum_points_.resize(nn);
+  for (int q = 0; q < n; ++q) sum_points_[q] = xi_[q] - c;
+  weighted_monomial_rows3(degree, sum_points_.data(), weight_.data(), nn, w);
   integrand_.fluid.weighted_sums(kf, eta_.data(), w, count, n, value_terms_.data(),
                                  gradients_ ? gradient_terms_.data() : nullptr);
   add_weighted_terms(mt, c, block);

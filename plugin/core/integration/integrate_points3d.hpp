@@ -231,6 +231,7 @@ class PointIntegrator3 : public PieceIntegrator3 {
   bool polynomial_multiplier_;  // fitted bases, the multiplier at degree <= 2, not the listings' product
   // add_weighted_sums': the weights w r^g along the points; V_g and A_g; P_g and u_g
   std::vector<double> sum_weights_, value_terms_, gradient_terms_;
+  std::vector<Point3> sum_points_;  // add_weighted_sums' r = xi - c
   std::vector<const double*> rows_;  // add_pairs': the pair's rows of values and gradients
   std::vector<double> products_;     // and their products
   // The gathered points carry dX/ds (jac_) where the map is not affine; on the reference side only where a

@@ -6,6 +6,7 @@
 #include <cstddef>
 
 #include "fe/lattice3d.hpp"
+#include "fe/points_evaluation3d.hpp"
 #include "fe/weighted_sum.hpp"
 
 namespace dlmfsi {
@@ -47,22 +48,6 @@ void PointMoments3::clear() {
   w_.clear();
 }
 
-namespace {
-
-// Rows 4 to count - 1 of monomials along the points (row m: its parent's times one coordinate of r), rows 0 to
-// 3 given.
-void parent_rows(double* rows, int count, std::size_t n, const double* const (&r)[3]) {
-  const auto& parents = monomial_parents3();
-  for (int m = 4; m < count; ++m) {
-    const double* from = rows + parents[m].parent * n;
-    const double* factor = r[parents[m].axis];
-    double* to = rows + m * n;
-    for (std::size_t q = 0; q < n; ++q) to[q] = from[q] * factor[q];
-  }
-}
-
-}  // namespace
-
 void PointMoments3::settle() {
   const std::size_t n = w_.size();
   if (n == 0) return;
@@ -76,31 +61,16 @@ void PointMoments3::settle() {
     scale_ = spread > 0 ? spread : 1;
   }
   const double to_unit = 1 / scale_;
-  // rows: W_g = w (xi - c)^g (cg_ rows), then r^b (cb_ rows), then xi - c and r = (x - x_c) / L
-  rows_.resize((static_cast<std::size_t>(cg_ + cb_) + 6) * n);
+  // rows: W_g = w (xi - c)^g (cg_ rows), then r^b (cb_ rows), r = (x - x_c) / L
+  for (std::size_t q = 0; q < n; ++q) {
+    xi_[q] = xi_[q] - c_;
+    x_[q] = to_unit * (x_[q] - x_c_);
+  }
+  rows_.resize(static_cast<std::size_t>(cg_ + cb_) * n);
   double* wr = rows_.data();
   double* br = wr + cg_ * n;
-  double* r = br + cb_ * n;
-  const double* const rc[3] = {r, r + n, r + 2 * n};
-  const double* const sc[3] = {r + 3 * n, r + 4 * n, r + 5 * n};
-  for (std::size_t q = 0; q < n; ++q) {
-    const Point3 a = xi_[q] - c_, b = to_unit * (x_[q] - x_c_);
-    r[q] = a.x;
-    r[n + q] = a.y;
-    r[2 * n + q] = a.z;
-    r[3 * n + q] = b.x;
-    r[4 * n + q] = b.y;
-    r[5 * n + q] = b.z;
-    wr[q] = w_[q];
-    br[q] = 1;
-  }
-  if (cg_ > 1)
-    for (int i = 0; i < 3; ++i)
-      for (std::size_t q = 0; q < n; ++q) wr[(1 + i) * n + q] = w_[q] * rc[i][q];
-  if (cb_ > 1)
-    for (int i = 0; i < 3; ++i) std::copy(sc[i], sc[i] + n, br + (1 + i) * n);
-  parent_rows(wr, cg_, n, rc);
-  parent_rows(br, cb_, n, sc);
+  weighted_monomial_rows3(m_, xi_.data(), w_.data(), n, wr);
+  weighted_monomial_rows3(p_, x_.data(), nullptr, n, br);
   const double* x[monomial_count3(kMaxLatticeDegree)];
   const double* y[monomial_count3(kMaxLatticeDegree)];
   for (int g = 0; g < cg_; ++g) x[g] = wr + g * n;
