@@ -89,18 +89,21 @@ void PointIntegrator3::start_band_moments(const ClippedImage3& image, const Quad
   if (!band_moments_) return;
   moment_groups_used_ = 0;
   face_moments_.reset(integrand_.multiplier.degree(), integrand_.fluid.degree(), image.sub_xi[0]);
+  beyond_moments_.reset(integrand_.multiplier.degree(), integrand_.fluid.degree(), image.sub_xi[0]);
 }
 
 void PointIntegrator3::add_column_moments(const ClippedImage3& image, const BandFace& face, Point3 xi, Point3 x0,
-                                          Point3 dd, double l, double column) {
+                                          Point3 dd, double l, double column, PointMoments3* into) {
+  PointMoments3& moments = into ? *into : face_moments_;
   const LineRule& along = line_rule(image.degree);
   for (size_t k = 0; k < along.nodes.size(); ++k) {
     const double t = along.nodes[k] * l;
-    face_moments_.add(xi + t * face.d, x0 + (t * dd + (0.5 * t * t) * face.dhd), along.weights[k] * column);
+    moments.add(xi + t * face.d, x0 + (t * dd + (0.5 * t * t) * face.dhd), along.weights[k] * column);
   }
 }
 
-void PointIntegrator3::add_face_moments(const ClippedImage3& image, int kf, double sign) {
+void PointIntegrator3::add_face_moments(const ClippedImage3& image, int kf, double sign, const PointMoments3* from) {
+  const PointMoments3& moments = from ? *from : face_moments_;
   const PolynomialBasis3& fluid = integrand_.fluid;
   const size_t size = static_cast<size_t>(monomial_count3(integrand_.multiplier.degree())) *
                       static_cast<size_t>(monomial_count3(fluid.degree()));
@@ -111,10 +114,10 @@ void PointIntegrator3::add_face_moments(const ClippedImage3& image, int kf, doub
     group.moments.assign(size, 0.0);
   }
   element_moments_.resize(size);
-  face_moments_.element_moments(fluid.to_reference(kf, face_moments_.x_centre(), image.origin),
+  moments.element_moments(fluid.to_reference(kf, moments.x_centre(), image.origin),
                                 fluid.inverse_jacobian(kf), element_moments_.data());
   for (size_t i = 0; i < size; ++i) group.moments[i] += sign * element_moments_[i];
-  group.points += face_moments_.points();
+  group.points += moments.points();
 }
 
 // add_weighted_sums' terms from each fluid tetrahedron's moments.
@@ -414,10 +417,7 @@ bool PointIntegrator3::band_face(const ClippedImage3& image, int kf, int j, int 
   const MappedTet& mt = image.tetrahedron;
   n = face_normal(kf, j);
   // grad_xi (n . A) = E_xi^-T E_y^T n (the straight image's edges from corner 0: straight_)
-  const StraightImage& a = straight_;
-  const Point3 w{dot(a.ey[0], n), dot(a.ey[1], n), dot(a.ey[2], n)};  // E_y^T n
-  // z = E_xi^-T w: z . ex[i] = w_i, by the cofactors of E_xi
-  const Point3 z = (1 / a.det) * (w.x * a.cofactor[0] + w.y * a.cofactor[1] + w.z * a.cofactor[2]);
+  const Point3 z = straight_gradient(n);
   const double grad = std::sqrt(dot(z, z));
   if (!(grad > 0)) return false;
   const Point3 axis[3] = {mt.reference_direction(0), mt.reference_direction(1), mt.reference_direction(2)};
@@ -425,14 +425,19 @@ bool PointIntegrator3::band_face(const ClippedImage3& image, int kf, int j, int 
   height = rise / grad;                         // d . nu: a column's height per unit of l
   face.d = d;
   face.quadratic = terms.quadratic;
-  face.across = across;
   if (terms.quadratic) {
     for (int i = 0; i < 3; ++i) face.hd[i] = hessian_along(terms.hessian, i, d);
     face.dhd = d.x * face.hd[0] + d.y * face.hd[1] + d.z * face.hd[2];
-    face.eta_dhd = linear_part(integrand_.fluid.inverse_jacobian(kf), face.dhd);
-    if (across >= 0) face.across_dhd = linear_part(integrand_.fluid.inverse_jacobian(across), face.dhd);
   }
+  set_face_tets(face, kf, across);
   return true;
+}
+
+void PointIntegrator3::set_face_tets(BandFace& face, int kf, int across) const {
+  face.across = across;
+  if (!face.quadratic) return;
+  face.eta_dhd = linear_part(integrand_.fluid.inverse_jacobian(kf), face.dhd);
+  if (across >= 0) face.across_dhd = linear_part(integrand_.fluid.inverse_jacobian(across), face.dhd);
 }
 
 // The band. On a face of the piece in a face plane of kf (n . y = c, n outward), the straight image's
@@ -528,6 +533,7 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
           add_column(image, kf, face, xi, x0, dd, D, root, root * height * area * rp.weight);
       }
     }
+    if (!on_boundary) edge_strips(image, kf, j, piece, f, xi_corner, solid_det, face, n, rise, height);
     if (!band_moments_) continue;
     face_moments_.settle();
     if (face_moments_.points() == 0) continue;

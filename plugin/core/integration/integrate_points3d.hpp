@@ -95,6 +95,27 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // of the tetrahedra across (kf -1: no piece).
   void add_column(const ClippedImage3& image, int kf, const BandFace& face, Point3 xi, Point3 x0, Point3 dd,
                   const Point3 (&D)[3], double l, double column, int near = -1);
+  // The band near the piece face f's edges on fluid edges (edge_strip3d.cpp): where the column's start and the
+  // point at which the segment from A to X crosses the face plane j lie on opposite sides of an edge, each edge's
+  // strip of columns taken back or added from that crossing on.
+  void edge_strips(const ClippedImage3& image, int kf, int j, const Piece3& piece, int f, const Point3* xi_corner,
+                   double solid_det, const BandFace& face, Point3 n, double rise, double height);
+  // One edge's strip: the edge between kf's face plane and its face g_face, y_edge a point of it, the piece's
+  // face along it from xi_a to xi_b (xi_in a point of the face off the edge), the strip's direction across the
+  // edge at each end (0: across it in the start plane).
+  void edge_strip(const ClippedImage3& image, int kf, int j, int g_face, Point3 y_edge, Point3 xi_a, Point3 xi_b,
+                  Point3 xi_in, const Point3 (&ends)[2], double solid_det, const BandFace& face, Point3 n,
+                  double rise, double height);
+  // The fluid face beyond the edge of kf's faces j and g_face in face j's plane (around the edge from kf through
+  // g_face, on kf's side of the plane): its tetrahedra on kf's side (same) and across (other, -1 on the mesh's
+  // boundary); false where no face of the ring lies in the plane.
+  bool coplanar_beyond(int kf, int j, int g_face, int& same, int& other) const;
+  // A band face's per-tetrahedron terms for the columns of kf's face with across (band_face's).
+  void set_face_tets(BandFace& face, int kf, int across) const;
+  // The straight image A (straight_): its slope along w, dA/dxi w; grad_xi (n . A); A(xi) relative to the origin.
+  Point3 straight_slope(Point3 w) const;
+  Point3 straight_gradient(Point3 n) const;
+  Point3 straight_position(const ClippedImage3& image, Point3 xi) const;
   // The band where it crosses the faces of the solid tetrahedron (side_band3d.cpp): the fluid tetrahedra of the
   // pieces on each sub-face on a face of it (note_side_piece), then the band crossing each such sub-face, once
   // its pieces are done (finish).
@@ -146,6 +167,7 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // point's fluid monomials formed once, not once per tetrahedron.
   bool band_moments_ = false;
   PointMoments3 face_moments_;
+  PointMoments3 beyond_moments_;  // an edge strip's columns in the face beyond the edge (edge_strip)
   struct MomentGroup {
     int kf = -1;
     bool fresh = false;  // just taken for kf (group_of): its moments to be zeroed
@@ -157,11 +179,11 @@ class PointIntegrator3 : public PieceIntegrator3 {
   std::vector<double> element_moments_;
   // Whether the bands go as moments here; if so, empty moments about the sub-tetrahedron's corner 0 (in xi).
   void start_band_moments(const ClippedImage3& image, const QuadraticTerms& terms);
-  // A column's points (add_column's) into face_moments_: X(xi + t d) = x0 + t dd + t^2 d^T H d / 2.
+  // A column's points (add_column's) into face_moments_ (or into): X(xi + t d) = x0 + t dd + t^2 d^T H d / 2.
   void add_column_moments(const ClippedImage3& image, const BandFace& face, Point3 xi, Point3 x0, Point3 dd,
-                          double l, double column);
-  // face_moments_ (settled) times sign into fluid tetrahedron kf's moments.
-  void add_face_moments(const ClippedImage3& image, int kf, double sign);
+                          double l, double column, PointMoments3* into = nullptr);
+  // face_moments_ (or from; settled) times sign into fluid tetrahedron kf's moments.
+  void add_face_moments(const ClippedImage3& image, int kf, double sign, const PointMoments3* from = nullptr);
   void add_band_moments(const ClippedImage3& image, LocalBlock& block);
   // The face of kf (corner: its vertices; j: the face opposite vertex j) whose plane holds the piece's face
   // whose vertices share the planes common (Piece3::planes' bits), or -1; on_boundary when that face is on the

@@ -279,10 +279,7 @@ void PointIntegrator3::face_band(const ClippedImage3& image, int sub, const Quad
   double rise, height;
   if (!band_face(image, f.face.tet, f.face.face, f.face.across, terms, face, n, rise, height)) return;
   // a column from xi starts at xi - (a / rise) d, whose straight image is A(xi) - (a / rise) Y_d, Y_d = dA/dxi d
-  const StraightImage& st = straight_;
-  const Point3 yd = (dot(face.d, st.cofactor[0]) / st.det) * st.ey[0] +
-                    (dot(face.d, st.cofactor[1]) / st.det) * st.ey[1] +
-                    (dot(face.d, st.cofactor[2]) / st.det) * st.ey[2];
+  const Point3 yd = straight_slope(face.d);
   const double yd_n = dot(n, yd);
   if (!(std::fabs(yd_n) > 0)) return;
   const Point3 fv[3] = {y, f.v[1] - image.origin, f.v[2] - image.origin};
