@@ -167,7 +167,7 @@ void PointIntegrator3::edge_strip(const ClippedImage3& image, int kf, int j, int
   BandFace beyond = face;
   beyond.across = -2;
   int same = -1, other = -1;
-  if (fluid_ && coplanar_beyond(kf, j, g_face, same, other)) set_face_tets(beyond, same, other);
+  if (coplanar_beyond(kf, j, g_face, same, other)) set_face_tets(beyond, same, other);
   if (band_moments_) beyond_moments_.clear();
   // the column from xi0: its root l, and g at its end
   struct Column {

@@ -533,7 +533,7 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
           add_column(image, kf, face, xi, x0, dd, D, root, root * height * area * rp.weight);
       }
     }
-    if (!on_boundary) edge_strips(image, kf, j, piece, f, xi_corner, solid_det, face, n, rise, height);
+    if (!on_boundary && fluid_) edge_strips(image, kf, j, piece, f, xi_corner, solid_det, face, n, rise, height);
     if (!band_moments_) continue;
     face_moments_.settle();
     if (face_moments_.points() == 0) continue;

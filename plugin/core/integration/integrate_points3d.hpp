@@ -95,9 +95,9 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // of the tetrahedra across (kf -1: no piece).
   void add_column(const ClippedImage3& image, int kf, const BandFace& face, Point3 xi, Point3 x0, Point3 dd,
                   const Point3 (&D)[3], double l, double column, int near = -1);
-  // The band near the piece face f's edges on fluid edges (edge_strip3d.cpp): where the column's start and the
-  // point at which the segment from A to X crosses the face plane j lie on opposite sides of an edge, each edge's
-  // strip of columns taken back or added from that crossing on.
+  // The band near the piece face f's edges on fluid edges (edge_strip3d.cpp; with the fluid side, whose mesh tells
+  // the face beyond an edge): where the column's start and the point at which the segment from A to X crosses the
+  // face plane j lie on opposite sides of an edge, each edge's strip of columns taken back or added from there on.
   void edge_strips(const ClippedImage3& image, int kf, int j, const Piece3& piece, int f, const Point3* xi_corner,
                    double solid_det, const BandFace& face, Point3 n, double rise, double height);
   // One edge's strip: the edge between kf's face plane and its face g_face, y_edge a point of it, the piece's
