@@ -114,8 +114,8 @@ void PointIntegrator3::add_face_moments(const ClippedImage3& image, int kf, doub
     group.moments.assign(size, 0.0);
   }
   element_moments_.resize(size);
-  moments.element_moments(fluid.to_reference(kf, moments.x_centre(), image.origin),
-                                fluid.inverse_jacobian(kf), element_moments_.data());
+  moments.element_moments(fluid.to_reference(kf, moments.x_centre(), image.origin), fluid.inverse_jacobian(kf),
+                          element_moments_.data());
   for (size_t i = 0; i < size; ++i) group.moments[i] += sign * element_moments_[i];
   group.points += moments.points();
 }
@@ -453,9 +453,9 @@ void PointIntegrator3::set_face_tets(BandFace& face, int kf, int across) const {
 // sub-tetrahedra and solid tetrahedra it crosses, so that a kink along one fluid plane is integrated to round-off. A
 // column may go on beyond the solid tetrahedron, with its polynomials (which may kink across the face);
 // the side band (side_band3d.cpp) takes that part back and adds the part of the band inside the tetrahedron that no
-// column from its pieces' faces reaches. What is left, where the integrand jumps: t^2 per unit length where two fluid
-// faces meet (each plane's columns end at the other's straight image, not at its true preimage), unless the jumps
-// across them add up.
+// column from its pieces' faces reaches. Where two fluid faces meet with jumps that do not add up, a face's columns
+// charge its jump where their start lies in it, not where the segment from A to X crosses it: edge_strips corrects
+// that along the face's edges (edge_strip3d.cpp); what is left is of the next order, near the corners.
 // Each column adds f_K and, with the opposite sign, f_K' of the fluid tetrahedron across, at the same points: the
 // band's integral of f_K - f_K', to round-off where f does not jump. Where the face is inside the sub-tetrahedron's
 // image, one of the two pieces takes the columns for both; where it lies on the sub-tetrahedron's boundary, each side
