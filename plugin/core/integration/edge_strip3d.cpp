@@ -105,6 +105,7 @@ bool PointIntegrator3::coplanar_beyond(int kf, int j, int g_face, int& same, int
   int ends[2], n = 0;
   for (int i = 0; i < 4; ++i)
     if (i != j && i != g_face) ends[n++] = mesh.tetrahedra[kf][i];
+  const int f_vertex = mesh.tetrahedra[kf][g_face];  // F's vertex off e
   // around e from kf through G, on kf's side of F's plane until a face of the ring lies in it
   int t = kf, through = g_face;
   for (int step = 0; step < 64; ++step) {
@@ -114,7 +115,7 @@ bool PointIntegrator3::coplanar_beyond(int kf, int j, int g_face, int& same, int
       const int v = mesh.tetrahedra[t][i];
       if (i != through && v != ends[0] && v != ends[1]) third = i;
     }
-    if (third < 0) return false;
+    if (third < 0 || mesh.tetrahedra[t][third] == f_vertex) return false;  // back at F, from across it
     if (t != kf || through != g_face) {  // G itself is not in F's plane
       if (orient3d(plane[0], plane[1], plane[2], mesh.vertex(t, third)) == 0) {
         same = t;
