@@ -421,7 +421,20 @@ bool PointIntegrator3::band_face(const ClippedImage3& image, int kf, int j, int 
   const double grad = std::sqrt(dot(z, z));
   if (!(grad > 0)) return false;
   const Point3 axis[3] = {mt.reference_direction(0), mt.reference_direction(1), mt.reference_direction(2)};
-  const Point3 d = column_axis(z, axis, rise);  // outward: n . A grows along d
+  // The axis is chosen from the whole solid tetrahedron's affine interpolant, so that the sub-tetrahedra's columns of
+  // one plane run along one axis and tile the band across their faces (each sub-tetrahedron choosing from its own
+  // straight image could pick another axis near a tie: gaps and overlaps of the band's thickness, an error algebraic
+  // in the sub-tetrahedra's size); its sub-tetrahedron's own choice where the plane hardly rises along it there.
+  Point3 d = column_axis(z, axis, rise);
+  const StraightImage& st = straight_;
+  const Point3 z_whole{dot(n, st.whole_e[0]), dot(n, st.whole_e[1]), dot(n, st.whole_e[2])};
+  double rise_whole;
+  const Point3 d_whole = column_axis(z_whole, axis, rise_whole);
+  const double along = dot(z, d_whole);
+  if (std::fabs(along) > 0.25 * rise) {
+    d = (along > 0 ? 1.0 : -1.0) * d_whole;  // outward: n . A grows along d
+    rise = std::fabs(along);
+  }
   height = rise / grad;                         // d . nu: a column's height per unit of l
   face.d = d;
   face.quadratic = terms.quadratic;

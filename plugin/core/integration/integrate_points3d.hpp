@@ -149,6 +149,7 @@ class PointIntegrator3 : public PieceIntegrator3 {
   struct StraightImage {
     Point3 ey[3], cofactor[3];
     double det = 0;
+    Point3 whole_e[3];  // the whole solid tetrahedron's affine interpolant: X(e_k) - X(0), k = 1, 2, 3
   };
   StraightImage straight_;
   int side_faces_ = 0, on_face_[4] = {-1, -1, -1, -1};  // on_face_[i]: T's face the sub-face opposite i lies on

@@ -48,6 +48,10 @@ void PointIntegrator3::start(const ClippedImage3& image) {
     straight_.cofactor[i] = cross(ex[(i + 1) % 3], ex[(i + 2) % 3]);
   }
   straight_.det = dot(ex[0], straight_.cofactor[0]);
+  const Point3 x0 = reference_position(image, Point3());
+  straight_.whole_e[0] = reference_position(image, Point3{1, 0, 0}) - x0;
+  straight_.whole_e[1] = reference_position(image, Point3{0, 1, 0}) - x0;
+  straight_.whole_e[2] = reference_position(image, Point3{0, 0, 1}) - x0;
   if (!fluid_) return;
   for (int sub = 0; sub < 4; ++sub) {  // the sub-tetrahedron's face opposite its corner sub lies on T's face i
     for (int i = 0; i < 4 && on_face_[sub] < 0; ++i) {
