@@ -30,7 +30,7 @@ namespace dlmfsi {
 namespace {
 
 // The root of h on the interval between 0 and l where h(0) and h(l) have opposite signs (Illinois' false
-// position, to the doubles' resolution of l).
+// position, to 1e-12 of l: the strip's integrand vanishes where t_c = l, so its error there is of second order).
 template <class H>
 double bracketed_root(H&& h, double l, double h0, double hl) {
   double lo = 0, hi = l, f_lo = h0, f_hi = hl;
