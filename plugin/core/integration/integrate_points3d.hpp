@@ -123,8 +123,6 @@ class PointIntegrator3 : public PieceIntegrator3 {
   struct SideFace {  // a sub-face, its frame and X on it (side_face)
     Point3 xi[3], y[3], nu, o, e1, e2, x, d[3], h_e1[3], h_e2[3], x_u, x_v, x_uu, x_uv, x_vv, lo, hi;
     Point3 edge_hessians[6];  // e^T H e along the sub-tetrahedron's edges
-    double solid_det;         // 6 |solid tetrahedron|
-    bool whole;                // the sub-tetrahedron is the solid tetrahedron (subdivide 0)
   };
   struct NearFace {  // a fluid face near a fluid tetrahedron, its corners, box and outward normal (face_normal)
     MeshFace3 face;
@@ -145,11 +143,14 @@ class PointIntegrator3 : public PieceIntegrator3 {
   const std::vector<NearFace>& near_faces(int kf);
   // The sub-tetrahedron's straight image A on the reference side (start): its edges from corner 0 in y, the
   // cofactors of its edges in xi (cofactor[i] = ex_(i+1) x ex_(i+2)) and det E_xi, from which dA/dxi = E_y E_xi^-1
-  // and grad_xi (n . A) = E_xi^-T E_y^T n follow (band_face, face_band), once per image.
+  // and grad_xi (n . A) = E_xi^-T E_y^T n follow (band_face, face_band), once per image; with what the side band
+  // reads of the whole solid tetrahedron.
   struct StraightImage {
     Point3 ey[3], cofactor[3];
     double det = 0;
     Point3 whole_e[3];  // the whole solid tetrahedron's affine interpolant: X(e_k) - X(0), k = 1, 2, 3
+    double solid_det = 0;  // 6 |solid tetrahedron|
+    bool whole = false;    // the sub-tetrahedron is the solid tetrahedron (subdivide 0)
   };
   StraightImage straight_;
   int side_faces_ = 0, on_face_[4] = {-1, -1, -1, -1};  // on_face_[i]: T's face the sub-face opposite i lies on

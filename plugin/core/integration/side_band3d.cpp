@@ -22,14 +22,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "fe/lattice3d.hpp"
 #include "fe/rules.hpp"
 #include "geometry/predicates3d.hpp"
 #include "integration/conic_region.hpp"
 #include "integration/integrate_points3d.hpp"
 #include "integration/reference_tet.hpp"
 #include "mesh/face_star3d.hpp"
-#include "sides/report.hpp"
 #include "sides/sides3d.hpp"
 
 namespace dlmfsi {
@@ -52,6 +50,10 @@ void PointIntegrator3::start(const ClippedImage3& image) {
   straight_.whole_e[0] = reference_position(image, Point3{1, 0, 0}) - x0;
   straight_.whole_e[1] = reference_position(image, Point3{0, 1, 0}) - x0;
   straight_.whole_e[2] = reference_position(image, Point3{0, 0, 1}) - x0;
+  const MappedTet& mt = image.tetrahedron;
+  straight_.solid_det = volume6(mt.solid[0], mt.solid[1], mt.solid[2], mt.solid[3]);
+  straight_.whole = true;
+  for (int i = 0; i < 4 && straight_.whole; ++i) straight_.whole = barycentric(image.sub_xi[i], i) == 1;
   if (!fluid_) return;
   for (int sub = 0; sub < 4; ++sub) {  // the sub-tetrahedron's face opposite its corner sub lies on T's face i
     for (int i = 0; i < 4 && on_face_[sub] < 0; ++i) {
@@ -138,10 +140,6 @@ void PointIntegrator3::side_face(const ClippedImage3& image, int sub, const Quad
     s.xi[m] = image.sub_xi[corner[m]];
     s.y[m] = image.sub_y[corner[m]] - image.origin;
   }
-  const MappedTet& mt = image.tetrahedron;
-  s.solid_det = volume6(mt.solid[0], mt.solid[1], mt.solid[2], mt.solid[3]);
-  s.whole = true;
-  for (int i = 0; i < 4 && s.whole; ++i) s.whole = barycentric(image.sub_xi[i], i) == 1;
   const Point3 nu = barycentric_gradient(sigma);
   s.nu = (1 / std::sqrt(dot(nu, nu))) * nu;
   s.o = s.xi[0];
@@ -331,7 +329,7 @@ void PointIntegrator3::face_band(const ClippedImage3& image, int sub, const Quad
 // 1.6e-16, and 7.7e-12 at subdivide 0 with two less along.
 void PointIntegrator3::band_region(const ClippedImage3& image, const QuadraticTerms& terms, const SideFace& s,
                                    const ColumnFrom& c, const double (*uv)[2], int m, int sign) {
-  const int extra = s.whole ? 2 : 0;
+  const int extra = straight_.whole ? 2 : 0;
   const LineRule& outer = line_rule(2 * image.degree + 4 + extra);
   const LineRule& inner = line_rule(image.degree + 2 + extra);
   Quadratic2 q;  // n . (X - y) on sigma in (u, v)
@@ -363,7 +361,7 @@ void PointIntegrator3::band_region(const ClippedImage3& image, const QuadraticTe
     }
     const double root = column_root(image, c.face, c.n, c.y, xi, x, dd, c.rise);
     if (!std::isfinite(root) || root == 0) continue;
-    const double column = rp.weight * std::fabs(root) * c.d_in * s.solid_det;
+    const double column = rp.weight * std::fabs(root) * c.d_in * straight_.solid_det;
     if (band_moments_) {
       add_column_moments(image, c.face, xi, x, dd, root, column);
       continue;
