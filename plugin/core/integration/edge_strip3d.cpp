@@ -175,10 +175,13 @@ void PointIntegrator3::edge_strip(const ClippedImage3& image, int kf, int j, int
     Point3 xi, x, D[3], dd;
     double l;
   };
-  auto column = [&](Point3 xi0, Column& c) {
+  auto evaluate = [&](Point3 xi0, Column& c) {  // X, dX/dxi and dX/dl along the column at xi0
     c.xi = xi0;
     reference_value(image, xi0, c.x, c.D);
     c.dd = face.d.x * c.D[0] + face.d.y * c.D[1] + face.d.z * c.D[2];
+  };
+  auto column = [&](Point3 xi0, Column& c) {
+    evaluate(xi0, c);
     c.l = column_root(image, face, n, y_edge, xi0, c.x, c.dd, rise);
     return std::isfinite(c.l);
   };
@@ -230,9 +233,7 @@ void PointIntegrator3::edge_strip(const ClippedImage3& image, int kf, int j, int
       if ((h0 < 0) == (hl < 0)) continue;
       const double tc = bracketed_root(h, c.l, h0, hl);
       Column from;
-      from.xi = xi0 + tc * face.d;
-      reference_value(image, from.xi, from.x, from.D);
-      from.dd = face.d.x * from.D[0] + face.d.y * from.D[1] + face.d.z * from.D[2];
+      evaluate(xi0 + tc * face.d, from);
       const double l = c.l - tc;
       // -J_F where the start is inside (v > 0), +J_F where it is outside: -sign(v) per unit of |v|
       // the start's area: |d xi0/du x d xi0/dv| = |(along + v dw) x w|
