@@ -241,12 +241,12 @@ void PointIntegrator3::edge_strip(const ClippedImage3& image, int kf, int j, int
       const double area = std::sqrt(dot(normal, normal)) * solid_det;
       const double weight = -rule.weights[k] * rule.weights[q] * v1 * area * height * l;
       if (band_moments_)
-        add_column_moments(image, face, from.xi, from.x, from.dd, l, weight);
+        add_column_moments(face, from.xi, from.x, from.dd, l, weight);
       else
         add_column(image, kf, face, from.xi, from.x, from.dd, from.D, l, weight);
       if (beyond.across == -2) continue;
       if (band_moments_)
-        add_column_moments(image, beyond, from.xi, from.x, from.dd, l, -weight, &beyond_moments_);
+        add_column_moments(beyond, from.xi, from.x, from.dd, l, -weight, &beyond_moments_);
       else
         add_column(image, kf, beyond, from.xi, from.x, from.dd, from.D, l, -weight, same);
     }

@@ -87,15 +87,16 @@ void PointIntegrator3::start_band_moments(const ClippedImage3& image, const Quad
   band_moments_ = terms.quadratic && weighted_sum_terms(image.tetrahedron) && integrand_.fluid.fitted() &&
                   integrand_.fluid.degree() <= 2;
   if (!band_moments_) return;
+  column_rule_ = &line_rule(image.degree);
   moment_groups_used_ = 0;
   face_moments_.reset(integrand_.multiplier.degree(), integrand_.fluid.degree(), image.sub_xi[0]);
   beyond_moments_.reset(integrand_.multiplier.degree(), integrand_.fluid.degree(), image.sub_xi[0]);
 }
 
-void PointIntegrator3::add_column_moments(const ClippedImage3& image, const BandFace& face, Point3 xi, Point3 x0,
-                                          Point3 dd, double l, double column, PointMoments3* into) {
+void PointIntegrator3::add_column_moments(const BandFace& face, Point3 xi, Point3 x0, Point3 dd, double l,
+                                          double column, PointMoments3* into) {
   PointMoments3& moments = into ? *into : face_moments_;
-  const LineRule& along = line_rule(image.degree);
+  const LineRule& along = *column_rule_;
   for (size_t k = 0; k < along.nodes.size(); ++k) {
     const double t = along.nodes[k] * l;
     moments.add(xi + t * face.d, x0 + (t * dd + (0.5 * t * t) * face.dhd), along.weights[k] * column);
@@ -541,7 +542,7 @@ void PointIntegrator3::gather_band(const ClippedImage3& image, int kf, const Pie
         if (root == 0) continue;
         if (on_boundary && !(root < 0)) continue;
         if (band_moments_)
-          add_column_moments(image, face, xi, x0, dd, root, root * height * area * rp.weight);
+          add_column_moments(face, xi, x0, dd, root, root * height * area * rp.weight);
         else
           add_column(image, kf, face, xi, x0, dd, D, root, root * height * area * rp.weight);
       }

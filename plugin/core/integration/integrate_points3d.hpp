@@ -169,6 +169,7 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // point's fluid monomials formed once, not once per tetrahedron.
   bool band_moments_ = false;
   PointMoments3 face_moments_;
+  const LineRule* column_rule_ = nullptr;  // the columns' rule of the image's degree (start_band_moments)
   PointMoments3 beyond_moments_;  // an edge strip's columns in the face beyond the edge (edge_strip)
   struct MomentGroup {
     int kf = -1;
@@ -182,8 +183,8 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // Whether the bands go as moments here; if so, empty moments about the sub-tetrahedron's corner 0 (in xi).
   void start_band_moments(const ClippedImage3& image, const QuadraticTerms& terms);
   // A column's points (add_column's) into face_moments_ (or into): X(xi + t d) = x0 + t dd + t^2 d^T H d / 2.
-  void add_column_moments(const ClippedImage3& image, const BandFace& face, Point3 xi, Point3 x0, Point3 dd,
-                          double l, double column, PointMoments3* into = nullptr);
+  void add_column_moments(const BandFace& face, Point3 xi, Point3 x0, Point3 dd, double l, double column,
+                          PointMoments3* into = nullptr);
   // face_moments_ (or from; settled) times sign into fluid tetrahedron kf's moments.
   void add_face_moments(const ClippedImage3& image, int kf, double sign, const PointMoments3* from = nullptr);
   void add_band_moments(const ClippedImage3& image, LocalBlock& block);

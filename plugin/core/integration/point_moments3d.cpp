@@ -43,21 +43,28 @@ void PointMoments3::reset(int m, int p, Point3 c) {
 void PointMoments3::clear() {
   std::fill(moment_.begin(), moment_.end(), 0.0);
   points_ = 0;
-  xi_.clear();
-  x_.clear();
-  w_.clear();
+  n_ = 0;
+}
+
+void PointMoments3::grow() {
+  const std::size_t size = std::max<std::size_t>(64, 2 * w_.size());
+  xi_.resize(size);
+  x_.resize(size);
+  w_.resize(size);
 }
 
 void PointMoments3::settle() {
-  const std::size_t n = w_.size();
+  const std::size_t n = n_;
   if (n == 0) return;
   if (points_ == 0) {  // x_c: the points' mean; scale_: their largest distance from it along an axis
     Point3 sum;
-    for (const Point3& x : x_) sum = sum + x;
+    for (std::size_t q = 0; q < n; ++q) sum = sum + x_[q];
     x_c_ = (1.0 / static_cast<double>(n)) * sum;
     double spread = 0;
-    for (const Point3& x : x_)
+    for (std::size_t q = 0; q < n; ++q) {
+      const Point3& x = x_[q];
       spread = std::max({spread, std::fabs(x.x - x_c_.x), std::fabs(x.y - x_c_.y), std::fabs(x.z - x_c_.z)});
+    }
     scale_ = spread > 0 ? spread : 1;
   }
   const double to_unit = 1 / scale_;
@@ -66,7 +73,7 @@ void PointMoments3::settle() {
     xi_[q] = xi_[q] - c_;
     x_[q] = to_unit * (x_[q] - x_c_);
   }
-  rows_.resize(static_cast<std::size_t>(cg_ + cb_) * n);
+  if (rows_.size() < static_cast<std::size_t>(cg_ + cb_) * n) rows_.resize(static_cast<std::size_t>(cg_ + cb_) * n);
   double* wr = rows_.data();
   double* br = wr + cg_ * n;
   weighted_monomial_rows3(m_, xi_.data(), w_.data(), n, wr);
@@ -75,13 +82,11 @@ void PointMoments3::settle() {
   const double* y[monomial_count3(kMaxLatticeDegree)];
   for (int g = 0; g < cg_; ++g) x[g] = wr + g * n;
   for (int b = 0; b < cb_; ++b) y[b] = br + b * n;
-  product_.resize(static_cast<std::size_t>(cg_) * cb_);
+  if (product_.size() < static_cast<std::size_t>(cg_) * cb_) product_.resize(static_cast<std::size_t>(cg_) * cb_);
   row_products(x, cg_, y, cb_, static_cast<int>(n), product_.data());
   for (std::size_t i = 0; i < moment_.size(); ++i) moment_[i] += product_[i];
   points_ += static_cast<long>(n);
-  xi_.clear();
-  x_.clear();
-  w_.clear();
+  n_ = 0;
 }
 
 void PointMoments3::element_moments(Point3 eta_c, const double* j, double* mu) const {

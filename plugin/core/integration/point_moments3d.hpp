@@ -9,6 +9,7 @@
 // polynomial in r, T[a][b] its coefficients (monomial a its parent's times one coordinate, monomial_parents3),
 // and the element's moments are mu[g][a] = sum_b T[a][b] M[g][b].
 #pragma once
+#include <cstddef>
 #include <vector>
 
 #include "point3.hpp"
@@ -22,15 +23,16 @@ class PointMoments3 {
   void reset(int m, int p, Point3 c);
   // A point (kept until settle()).
   void add(Point3 xi, Point3 x, double w) {
-    xi_.push_back(xi);
-    x_.push_back(x);
-    w_.push_back(w);
+    if (n_ == w_.size()) grow();
+    xi_[n_] = xi;
+    x_[n_] = x;
+    w_[n_++] = w;
   }
   // The points added since into the moments, as products of rows along them (row_products).
   void settle();
   // Empty again, about the same c.
   void clear();
-  long points() const { return points_ + static_cast<long>(w_.size()); }
+  long points() const { return points_ + static_cast<long>(n_); }
   Point3 centre() const { return c_; }
   Point3 x_centre() const { return x_c_; }
   // mu[g nm + a] (nm = monomial_count3(p)): the moments (settled) in the element coordinates
@@ -43,9 +45,13 @@ class PointMoments3 {
   Point3 c_, x_c_;
   double scale_ = 1;  // L
   std::vector<double> moment_;  // M[g cb + b]
-  std::vector<Point3> xi_, x_;  // the points not settled
+  // the points not settled: the first n_ of each (the buffers only grow, so that a settle() and the points after it
+  // write into memory already there)
+  std::vector<Point3> xi_, x_;
   std::vector<double> w_;
-  std::vector<double> rows_, product_;  // settle's rows (cg_ then cb_) and their products
+  std::size_t n_ = 0;
+  std::vector<double> rows_, product_;  // settle's rows (cg_ then cb_) and their products (grown as the points)
+  void grow();
   mutable std::vector<double> expansion_;  // T[a cb + b]
 };
 

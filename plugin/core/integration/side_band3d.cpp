@@ -363,7 +363,7 @@ void PointIntegrator3::band_region(const ClippedImage3& image, const QuadraticTe
     if (!std::isfinite(root) || root == 0) continue;
     const double column = rp.weight * std::fabs(root) * c.d_in * straight_.solid_det;
     if (band_moments_) {
-      add_column_moments(image, c.face, xi, x, dd, root, column);
+      add_column_moments(c.face, xi, x, dd, root, column);
       continue;
     }
     add_column(image, -1, c.face, xi, x, dd, D, root, column, c.tet);
