@@ -734,8 +734,11 @@ void PointIntegrator3::add_weighted_terms(const MappedTet& mt, Point3 c, LocalBl
   double* taylor = vs + cc * nf;      // A_g of multiplier function b at count b + g
   double* ps = gradient_terms_.data();  // P_g of f at 3 (count f + g)
   double* u = ps + 3 * cc * nf;       // c1 u_g of b at 3 (count b + g)
-  taylor_coefficients(multiplier.coefficients(mt.k), degree, ns, c, taylor);
-  if (gradients_) {
+  const bool formed = terms_k_ == mt.k && terms_c_ == c;
+  terms_k_ = mt.k;
+  terms_c_ = c;
+  if (!formed) taylor_coefficients(multiplier.coefficients(mt.k), degree, ns, c, taylor);
+  if (gradients_ && !formed) {
     MapValue3 jc, gj[3];
     chain_matrices(mt, c, jc, gj);
     const double* k = multiplier.inverse_jacobian(mt.k);  // k[3 i + j] = dxi_i / ds_j

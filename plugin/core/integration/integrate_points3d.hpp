@@ -237,6 +237,10 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // are formed about c, whichever way.
   void size_weighted_terms();
   void add_weighted_terms(const MappedTet& mt, Point3 c, LocalBlock& block);
+  // The solid tetrahedron and the centre c whose multiplier terms (A_g, u_g) add_weighted_terms last formed: the
+  // band's moments of every fluid tetrahedron of an image are taken about one centre (start() forgets them).
+  int terms_k_ = -1;
+  Point3 terms_c_;
   // A quadratic map's dX/ds(xi + r) = J + sum_j r_j G_j about xi: J = dX/ds(xi) and G_j = d(dX/ds)/dxi_j, each
   // formed by set_jacobian (of dX/dxi(xi) and of the hessian's columns), so each is of the size of dX/ds
   // whatever the mesh's units.

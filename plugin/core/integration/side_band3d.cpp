@@ -33,6 +33,7 @@
 namespace dlmfsi {
 
 void PointIntegrator3::start(const ClippedImage3& image) {
+  terms_k_ = -1;
   side_faces_ = 0;
   for (int sub = 0; sub < 4; ++sub) {
     side_kf_[sub].clear();
