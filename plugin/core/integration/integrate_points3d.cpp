@@ -693,6 +693,23 @@ void taylor_coefficients(const double* coef, int degree, std::size_t width, Poin
   }
 }
 
+// c2 sum_g A_g V_g + sum_g u_g . P_g for one multiplier function (tb: A, ub: u) and one fluid function (v: V,
+// p: P), count monomials g; pair_term<C> the same sums in the same order with count C known.
+inline double pair_term(int count, const double* tb, const double* v, const double* ub, const double* p, double c2,
+                        bool gradients) {
+  double mass = 0;
+  for (int g = 0; g < count; ++g) mass += tb[g] * v[g];
+  double sum = c2 * mass;
+  if (gradients)
+    for (int g = 0; g < 3 * count; ++g) sum += ub[g] * p[g];
+  return sum;
+}
+template <int C>
+inline double pair_term(const double* tb, const double* v, const double* ub, const double* p, double c2,
+                        bool gradients) {
+  return pair_term(C, tb, v, ub, p, c2, gradients);
+}
+
 }  // namespace
 
 // About a point c of the batch (its first: the terms below are then of the points' spread, not of the
@@ -785,15 +802,9 @@ void PointIntegrator3::add_weighted_terms(const MappedTet& mt, Point3 c, LocalBl
       double* col = block.column(pair.fluid_first + static_cast<int>(a)) + pair.solid_first;
       for (size_t i = 0; i < pair.solid_functions.size(); ++i) {
         const size_t b = static_cast<size_t>(pair.solid_functions[i]);
-        const double* tb = taylor + cc * b;
-        double mass = 0;
-        for (int g = 0; g < count; ++g) mass += tb[g] * v[g];
-        double sum = c2 * mass;
-        if (gradients_) {
-          const double* ub = u + 3 * cc * b;
-          for (size_t g = 0; g < 3 * cc; ++g) sum += ub[g] * p[g];
-        }
-        col[i] += sum;
+        const double *tb = taylor + cc * b, *ub = u + 3 * cc * b;
+        col[i] += count == 4 ? pair_term<4>(tb, v, ub, p, c2, gradients_)  // a P1 multiplier: the loops unrolled
+                             : pair_term(count, tb, v, ub, p, c2, gradients_);
       }
     }
   }
