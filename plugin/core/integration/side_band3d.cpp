@@ -256,6 +256,10 @@ void PointIntegrator3::face_band(const ClippedImage3& image, int sub, const Quad
   // h_ij = n . e_ij^T H e_ij (X - A vanishes at its corners, and along an edge is -t (1 - t) e^T H e / 2): where
   // the three h have one sign, so has q - a all over the sub-face, and the side of a = 0 that needs the other
   // sign (a < 0 needs q > a, a > 0 needs q < a) has no band.
+  // And since sum lambda_i lambda_j <= 1/3, q - a <= max(0, -h) / 6 and a - q <= max(0, h) / 6 there: the side
+  // a < 0 has a band only where a > -max(0, -h) / 6, the side a > 0 only where a < max(0, h) / 6.
+  const double lo = std::min({a[0], a[1], a[2]}), hi = std::max({a[0], a[1], a[2]});
+  const double scale = std::sqrt(dot(n, n) * size);
   bool empty_side[2] = {false, false};  // a < 0, a > 0
   if (terms.quadratic) {
     double h_lo = 0, h_hi = 0;
@@ -265,12 +269,11 @@ void PointIntegrator3::face_band(const ClippedImage3& image, int sub, const Quad
       h_lo = m == 0 ? h : std::min(h_lo, h);
       h_hi = m == 0 ? h : std::max(h_hi, h);
     }
-    empty_side[0] = h_lo >= 0;
-    empty_side[1] = h_hi <= 0;
-    if (empty_side[0] && empty_side[1]) return;  // q = a: no band
+    const double slack = 1e-12 * scale;
+    empty_side[0] = h_lo >= 0 || hi < -(-h_lo / 6 * (1 + 1e-12) + slack);
+    empty_side[1] = h_hi <= 0 || lo > h_hi / 6 * (1 + 1e-12) + slack;
+    if (empty_side[0] && empty_side[1]) return;  // no band on the sub-face
   }
-  const double lo = std::min({a[0], a[1], a[2]}), hi = std::max({a[0], a[1], a[2]});
-  const double scale = std::sqrt(dot(n, n) * size);
   if (hi < -(reach + 1e-12 * scale) || lo > reach + 1e-12 * scale) return;
   if (std::max(hi, -lo) <= 1e-10 * scale) {  // the sub-face's image in F's plane: no column crosses it
     bool in_plane = true;
