@@ -8,31 +8,11 @@
 
 namespace dlmfsi {
 
-void monomial_exponents3(int m, int& a, int& b, int& c) {
-  int t = 0;
-  while (monomial_count3(t) <= m) ++t;
-  int r = m - (t > 0 ? monomial_count3(t - 1) : 0);
-  c = 0;
-  while (r > t - c) {  // t - c + 1 monomials for each c
-    r -= t - c + 1;
-    ++c;
-  }
-  b = r;
-  a = t - b - c;
-}
-
 Point3 lattice_point3(int d, int m) {
   if (d == 0) return {0.25, 0.25, 0.25};
   int a, b, c;
   monomial_exponents3(m, a, b, c);
   return {static_cast<double>(a) / d, static_cast<double>(b) / d, static_cast<double>(c) / d};
-}
-
-int monomial_index3(int a, int b, int c) {
-  const int t = a + b + c;
-  int m = t > 0 ? monomial_count3(t - 1) : 0;
-  for (int cc = 0; cc < c; ++cc) m += t - cc + 1;
-  return m + b;
 }
 
 const std::vector<MonomialParent3>& monomial_parents3() {

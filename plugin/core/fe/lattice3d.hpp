@@ -13,9 +13,26 @@ constexpr int monomial_count3(int d) { return (d + 1) * (d + 2) * (d + 3) / 6; }
 
 // Monomial m is xi1^a xi2^b xi3^c, listed by total degree t = a + b + c, then c = 0..t, then b = 0..t-c:
 // the monomials of degree <= d - 1 are the first monomial_count3(d - 1) of those of degree <= d.
-void monomial_exponents3(int m, int& a, int& b, int& c);
+// (Inline: the bands' terms call both for every monomial of every fluid tetrahedron's sums.)
+inline void monomial_exponents3(int m, int& a, int& b, int& c) {
+  int t = 0;
+  while (monomial_count3(t) <= m) ++t;
+  int r = m - (t > 0 ? monomial_count3(t - 1) : 0);
+  c = 0;
+  while (r > t - c) {  // t - c + 1 monomials for each c
+    r -= t - c + 1;
+    ++c;
+  }
+  b = r;
+  a = t - b - c;
+}
 // Its inverse: the index of xi1^a xi2^b xi3^c.
-int monomial_index3(int a, int b, int c);
+inline int monomial_index3(int a, int b, int c) {
+  const int t = a + b + c;
+  int m = t > 0 ? monomial_count3(t - 1) : 0;
+  for (int cc = 0; cc < c; ++cc) m += t - cc + 1;
+  return m + b;
+}
 
 // Lattice point m of degree d >= 1: (a/d, b/d, c/d) with the exponents of monomial m (d = 0: the centroid).
 Point3 lattice_point3(int d, int m);
