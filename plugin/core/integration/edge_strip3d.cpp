@@ -23,6 +23,7 @@
 #include "fe/rules.hpp"
 #include "geometry/predicates3d.hpp"
 #include "integration/integrate_points3d.hpp"
+#include "integration/reference_tet.hpp"
 #include "sides/sides3d.hpp"
 
 namespace dlmfsi {
@@ -175,9 +176,26 @@ void PointIntegrator3::edge_strip(const ClippedImage3& image, int kf, int j, int
     Point3 xi, x, D[3], dd;
     double l;
   };
-  auto evaluate = [&](Point3 xi0, Column& c) {  // X, dX/dxi and dX/dl along the column at xi0
+  // X, dX/dxi and dX/dl along the column at xi0: a quadratic map's by its Taylor terms about the last point the
+  // map itself gave (base: each of the rule's points along the edge), X(b + r) = X(b) + D r + r^T H r / 2 and
+  // dX/dxi_i(b + r) = D_i + (H r)_i
+  double hessian[3][3][3];
+  if (face.quadratic) image.tetrahedron.reference_hessian(hessian);
+  Column base;
+  bool based = false;
+  auto evaluate = [&](Point3 xi0, Column& c) {
     c.xi = xi0;
-    reference_value(image, xi0, c.x, c.D);
+    if (based) {
+      const Point3 r = xi0 - base.xi;
+      c.x = base.x;
+      for (int i = 0; i < 3; ++i) {
+        const Point3 hr = hessian_along(hessian, i, r);
+        c.D[i] = base.D[i] + hr;
+        c.x = c.x + coordinate(r, i) * (base.D[i] + 0.5 * hr);
+      }
+    } else {
+      reference_value(image, xi0, c.x, c.D);
+    }
     c.dd = face.d.x * c.D[0] + face.d.y * c.D[1] + face.d.z * c.D[2];
   };
   auto column = [&](Point3 xi0, Column& c) {
@@ -197,7 +215,12 @@ void PointIntegrator3::edge_strip(const ClippedImage3& image, int kf, int j, int
     const Point3 w = (1 - rule.nodes[k]) * w_end[0] + rule.nodes[k] * w_end[1], dw = w_end[1] - w_end[0];
     // v1: where the column's end crosses G, g(X(end)) = 0 (secant from v = 0, g(X(end)) falling about 1 per unit)
     Column c;
+    based = false;
     if (!column(xi_u, c)) continue;
+    if (face.quadratic) {
+      base = c;
+      based = true;
+    }
     double v0 = 0, f0 = end_g(c), v1 = f0, f1 = 0;
     if (f0 == 0) continue;
     bool found = false;
