@@ -53,6 +53,19 @@ void PointMoments3::grow() {
   w_.resize(size);
 }
 
+template <int CG, int CB>
+void PointMoments3::add_linear(std::size_t n, double to_unit) {
+  double sum[CG * CB] = {};
+  for (std::size_t q = 0; q < n; ++q) {
+    const Point3 d = xi_[q] - c_, r = to_unit * (x_[q] - x_c_);
+    const double w = w_[q];
+    const double row_w[4] = {w, w * d.x, w * d.y, w * d.z}, row_r[4] = {1, r.x, r.y, r.z};
+    for (int g = 0; g < CG; ++g)
+      for (int b = 0; b < CB; ++b) sum[g * CB + b] += row_w[g] * row_r[b];
+  }
+  for (int i = 0; i < CG * CB; ++i) moment_[static_cast<std::size_t>(i)] += sum[i];
+}
+
 void PointMoments3::settle() {
   const std::size_t n = n_;
   if (n == 0) return;
@@ -68,6 +81,15 @@ void PointMoments3::settle() {
     scale_ = spread > 0 ? spread : 1;
   }
   const double to_unit = 1 / scale_;
+  if (m_ <= 1 && p_ <= 1) {  // a few products per point: summed point by point
+    if (m_ == 1 && p_ == 1) add_linear<4, 4>(n, to_unit);
+    else if (m_ == 1) add_linear<4, 1>(n, to_unit);
+    else if (p_ == 1) add_linear<1, 4>(n, to_unit);
+    else add_linear<1, 1>(n, to_unit);
+    points_ += static_cast<long>(n);
+    n_ = 0;
+    return;
+  }
   // rows: W_g = w (xi - c)^g (cg_ rows), then r^b (cb_ rows), r = (x - x_c) / L
   for (std::size_t q = 0; q < n; ++q) {
     xi_[q] = xi_[q] - c_;

@@ -52,6 +52,9 @@ class PointMoments3 {
   std::size_t n_ = 0;
   std::vector<double> rows_, product_;  // settle's rows (cg_ then cb_) and their products (grown as the points)
   void grow();
+  // The moments of degree <= 1 in xi and in r (CG, CB = 1 or 4) of the n points, summed point by point.
+  template <int CG, int CB>
+  void add_linear(std::size_t n, double to_unit);
   mutable std::vector<double> expansion_;  // T[a cb + b]
 };
 
