@@ -99,6 +99,26 @@ void PointIntegrator3::edge_strips(const ClippedImage3& image, int kf, int j, co
 }
 
 bool PointIntegrator3::coplanar_beyond(int kf, int j, int g_face, int& same, int& other) const {
+  constexpr int kSlots = 1024;
+  if (beyond_.empty()) beyond_.resize(kSlots);
+  const unsigned key = 16u * static_cast<unsigned>(kf) + 4u * static_cast<unsigned>(j) + static_cast<unsigned>(g_face);
+  Beyond& kept = beyond_[key % kSlots];
+  if (kept.kf == kf && kept.j == j && kept.g_face == g_face) {
+    same = kept.same;
+    other = kept.other;
+    return kept.found;
+  }
+  same = other = -1;
+  kept.found = walk_beyond(kf, j, g_face, same, other);
+  kept.kf = kf;
+  kept.j = j;
+  kept.g_face = g_face;
+  kept.same = same;
+  kept.other = other;
+  return kept.found;
+}
+
+bool PointIntegrator3::walk_beyond(int kf, int j, int g_face, int& same, int& other) const {
   const Mesh3& mesh = fluid_->mesh();
   Point3 plane[3];
   for (int m = 0; m < 3; ++m) plane[m] = mesh.vertex(kf, (j + 1 + m) & 3);

@@ -110,6 +110,14 @@ class PointIntegrator3 : public PieceIntegrator3 {
   // g_face, on kf's side of the plane): its tetrahedra on kf's side (same) and across (other, -1 on the mesh's
   // boundary); false where no face of the ring lies in the plane.
   bool coplanar_beyond(int kf, int j, int g_face, int& same, int& other) const;
+  // coplanar_beyond's answers kept for the edges met last (direct-mapped on (kf, j, g_face): the solid
+  // tetrahedra near a fluid edge ask about it again for each of their pieces there)
+  struct Beyond {
+    int kf = -1, j, g_face, same, other;
+    bool found;
+  };
+  mutable std::vector<Beyond> beyond_;
+  bool walk_beyond(int kf, int j, int g_face, int& same, int& other) const;  // coplanar_beyond's ring walk
   // A band face's per-tetrahedron terms for the columns of kf's face with across (band_face's).
   void set_face_tets(BandFace& face, int kf, int across) const;
   // The straight image A (straight_): its slope along w, dA/dxi w; grad_xi (n . A); A(xi) relative to the origin.
