@@ -293,6 +293,23 @@ void PolynomialTerms3::sums_from_moments(const int* twin, const double* j, const
 }
 
 void weighted_monomial_rows3(int degree, const Point3* r, const double* w, std::size_t n, double* rows) {
+  if (degree == 2) {  // in one pass, each row its parent's times the same coordinate (monomial_parents3) as below
+    for (std::size_t q = 0; q < n; ++q) {
+      const double one = w ? w[q] : 1, x = r[q].x, y = r[q].y, z = r[q].z;
+      const double rx = w ? one * x : x, ry = w ? one * y : y, rz = w ? one * z : z;
+      rows[q] = one;
+      rows[n + q] = rx;
+      rows[2 * n + q] = ry;
+      rows[3 * n + q] = rz;
+      rows[4 * n + q] = rx * x;  // x^2, xy, y^2, xz, yz, z^2
+      rows[5 * n + q] = ry * x;
+      rows[6 * n + q] = ry * y;
+      rows[7 * n + q] = rz * x;
+      rows[8 * n + q] = rz * y;
+      rows[9 * n + q] = rz * z;
+    }
+    return;
+  }
   for (std::size_t q = 0; q < n; ++q) rows[q] = w ? w[q] : 1;
   if (degree == 0) return;
   for (std::size_t q = 0; q < n; ++q) {
