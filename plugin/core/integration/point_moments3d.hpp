@@ -28,7 +28,8 @@ class PointMoments3 {
     x_[n_] = x;
     w_[n_++] = w;
   }
-  // The points added since into the moments, as products of rows along them (row_products).
+  // The points added since into the moments: as products of rows along them (row_products), or point by point
+  // where both degrees are <= 1 (add_linear).
   void settle();
   // Empty again, about the same c.
   void clear();
