@@ -83,6 +83,28 @@ void PointMoments3::add_linear(std::size_t n, double to_unit) {
   for (int i = 0; i < CG * CB; ++i) moment_[static_cast<std::size_t>(i)] += sum[i];
 }
 
+void PointMoments3::add_linear_quadratic(std::size_t n, double to_unit) {
+  typedef double Pair __attribute__((vector_size(16)));
+  Pair acc[4][5] = {};  // [g][pair of monomials b]: (1, x), (y, z), (x^2, xy), (y^2, xz), (yz, z^2)
+  for (std::size_t q = 0; q < n; ++q) {
+    const Point3 d = xi_[q] - c_, r = to_unit * (x_[q] - x_c_);
+    const double w = w_[q];
+    const double row_w[4] = {w, w * d.x, w * d.y, w * d.z};
+    // the monomials as weighted_monomial_rows3 forms them: each its parent's times one coordinate
+    const Pair r01 = {1, r.x}, r23 = {r.y, r.z}, r45 = {r.x * r.x, r.y * r.x}, r67 = {r.y * r.y, r.z * r.x},
+               r89 = {r.z * r.y, r.z * r.z};
+    for (int g = 0; g < 4; ++g) {
+      acc[g][0] += row_w[g] * r01;
+      acc[g][1] += row_w[g] * r23;
+      acc[g][2] += row_w[g] * r45;
+      acc[g][3] += row_w[g] * r67;
+      acc[g][4] += row_w[g] * r89;
+    }
+  }
+  for (int g = 0; g < 4; ++g)
+    for (int b = 0; b < 10; ++b) moment_[static_cast<std::size_t>(g * 10 + b)] += acc[g][b / 2][b % 2];
+}
+
 void PointMoments3::settle() {
   const std::size_t n = n_;
   if (n == 0) return;
@@ -103,6 +125,12 @@ void PointMoments3::settle() {
     else if (m_ == 1) add_linear<4, 1>(n, to_unit);
     else if (p_ == 1) add_linear<1, 4>(n, to_unit);
     else add_linear<1, 1>(n, to_unit);
+    points_ += static_cast<long>(n);
+    n_ = 0;
+    return;
+  }
+  if (m_ == 1 && p_ == 2) {
+    add_linear_quadratic(n, to_unit);
     points_ += static_cast<long>(n);
     n_ = 0;
     return;

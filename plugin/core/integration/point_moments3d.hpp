@@ -29,7 +29,8 @@ class PointMoments3 {
     w_[n_++] = w;
   }
   // The points added since into the moments: as products of rows along them (row_products), or point by point
-  // where both degrees are <= 1 (add_linear).
+  // where both degrees are <= 1 (add_linear) and for a linear multiplier against a quadratic fluid
+  // (add_linear_quadratic).
   void settle();
   // Empty again, about the same c.
   void clear();
@@ -56,6 +57,8 @@ class PointMoments3 {
   // The moments of degree <= 1 in xi and in r (CG, CB = 1 or 4) of the n points, summed point by point.
   template <int CG, int CB>
   void add_linear(std::size_t n, double to_unit);
+  // The forty moments of degree <= 1 in xi and <= 2 in r of the n points, summed point by point in pairs of lanes.
+  void add_linear_quadratic(std::size_t n, double to_unit);
   mutable std::vector<double> expansion_;  // T[a cb + b]
 };
 
