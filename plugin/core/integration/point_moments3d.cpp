@@ -56,53 +56,38 @@ void PointMoments3::grow() {
 template <int CG, int CB>
 void PointMoments3::add_linear(std::size_t n, double to_unit) {
   double sum[CG * CB] = {};
-  if (CG == 4 && CB == 4) {  // the sixteen sums in eight pairs of lanes (each sum still point after point)
-    typedef double Pair __attribute__((vector_size(16)));
-    Pair acc[4][2] = {};
-    for (std::size_t q = 0; q < n; ++q) {
-      const Point3 d = xi_[q] - c_, r = to_unit * (x_[q] - x_c_);
-      const double w = w_[q];
-      const double row_w[4] = {w, w * d.x, w * d.y, w * d.z};
-      const Pair r01 = {1, r.x}, r23 = {r.y, r.z};
-      for (int g = 0; g < 4; ++g) {
-        acc[g][0] += row_w[g] * r01;
-        acc[g][1] += row_w[g] * r23;
-      }
-    }
-    for (int g = 0; g < 4; ++g)
-      for (int b = 0; b < 4; ++b) sum[g * 4 + b] = acc[g][b / 2][b % 2];
-  } else {
-    for (std::size_t q = 0; q < n; ++q) {
-      const Point3 d = xi_[q] - c_, r = to_unit * (x_[q] - x_c_);
-      const double w = w_[q];
-      const double row_w[4] = {w, w * d.x, w * d.y, w * d.z}, row_r[4] = {1, r.x, r.y, r.z};
-      for (int g = 0; g < CG; ++g)
-        for (int b = 0; b < CB; ++b) sum[g * CB + b] += row_w[g] * row_r[b];
-    }
+  for (std::size_t q = 0; q < n; ++q) {
+    const Point3 d = xi_[q] - c_, r = to_unit * (x_[q] - x_c_);
+    const double w = w_[q];
+    const double row_w[4] = {w, w * d.x, w * d.y, w * d.z}, row_r[4] = {1, r.x, r.y, r.z};
+    for (int g = 0; g < CG; ++g)
+      for (int b = 0; b < CB; ++b) sum[g * CB + b] += row_w[g] * row_r[b];
   }
   for (int i = 0; i < CG * CB; ++i) moment_[static_cast<std::size_t>(i)] += sum[i];
 }
 
-void PointMoments3::add_linear_quadratic(std::size_t n, double to_unit) {
+template <int P>
+void PointMoments3::add_paired(std::size_t n, double to_unit) {
   typedef double Pair __attribute__((vector_size(16)));
-  Pair acc[4][5] = {};  // [g][pair of monomials b]: (1, x), (y, z), (x^2, xy), (y^2, xz), (yz, z^2)
+  Pair acc[4][P] = {};  // [g][pair of monomials b]: (1, x), (y, z), then (x^2, xy), (y^2, xz), (yz, z^2)
   for (std::size_t q = 0; q < n; ++q) {
     const Point3 d = xi_[q] - c_, r = to_unit * (x_[q] - x_c_);
     const double w = w_[q];
     const double row_w[4] = {w, w * d.x, w * d.y, w * d.z};
     // the monomials as weighted_monomial_rows3 forms them: each its parent's times one coordinate
-    const Pair r01 = {1, r.x}, r23 = {r.y, r.z}, r45 = {r.x * r.x, r.y * r.x}, r67 = {r.y * r.y, r.z * r.x},
-               r89 = {r.z * r.y, r.z * r.z};
-    for (int g = 0; g < 4; ++g) {
-      acc[g][0] += row_w[g] * r01;
-      acc[g][1] += row_w[g] * r23;
-      acc[g][2] += row_w[g] * r45;
-      acc[g][3] += row_w[g] * r67;
-      acc[g][4] += row_w[g] * r89;
+    Pair rb[P];
+    rb[0] = Pair{1, r.x};
+    rb[1] = Pair{r.y, r.z};
+    if (P == 5) {
+      rb[P - 3] = Pair{r.x * r.x, r.y * r.x};
+      rb[P - 2] = Pair{r.y * r.y, r.z * r.x};
+      rb[P - 1] = Pair{r.z * r.y, r.z * r.z};
     }
+    for (int g = 0; g < 4; ++g)
+      for (int b = 0; b < P; ++b) acc[g][b] += row_w[g] * rb[b];
   }
   for (int g = 0; g < 4; ++g)
-    for (int b = 0; b < 10; ++b) moment_[static_cast<std::size_t>(g * 10 + b)] += acc[g][b / 2][b % 2];
+    for (int b = 0; b < 2 * P; ++b) moment_[static_cast<std::size_t>(g * 2 * P + b)] += acc[g][b / 2][b % 2];
 }
 
 void PointMoments3::settle() {
@@ -120,17 +105,12 @@ void PointMoments3::settle() {
     scale_ = spread > 0 ? spread : 1;
   }
   const double to_unit = 1 / scale_;
-  if (m_ <= 1 && p_ <= 1) {  // a few products per point: summed point by point
-    if (m_ == 1 && p_ == 1) add_linear<4, 4>(n, to_unit);
+  if ((m_ <= 1 && p_ <= 1) || (m_ == 1 && p_ == 2)) {  // a few products per point: summed point by point
+    if (m_ == 1 && p_ == 2) add_paired<5>(n, to_unit);
+    else if (m_ == 1 && p_ == 1) add_paired<2>(n, to_unit);
     else if (m_ == 1) add_linear<4, 1>(n, to_unit);
     else if (p_ == 1) add_linear<1, 4>(n, to_unit);
     else add_linear<1, 1>(n, to_unit);
-    points_ += static_cast<long>(n);
-    n_ = 0;
-    return;
-  }
-  if (m_ == 1 && p_ == 2) {
-    add_linear_quadratic(n, to_unit);
     points_ += static_cast<long>(n);
     n_ = 0;
     return;

@@ -29,8 +29,8 @@ class PointMoments3 {
     w_[n_++] = w;
   }
   // The points added since into the moments: as products of rows along them (row_products), or point by point
-  // where both degrees are <= 1 (add_linear) and for a linear multiplier against a quadratic fluid
-  // (add_linear_quadratic).
+  // where both degrees are <= 1 (add_linear, add_paired) and for a linear multiplier against a quadratic fluid
+  // (add_paired).
   void settle();
   // Empty again, about the same c.
   void clear();
@@ -54,11 +54,13 @@ class PointMoments3 {
   std::size_t n_ = 0;
   std::vector<double> rows_, product_;  // settle's rows (cg_ then cb_) and their products (grown as the points)
   void grow();
-  // The moments of degree <= 1 in xi and in r (CG, CB = 1 or 4) of the n points, summed point by point.
+  // The moments of degree <= 1 in xi and in r (CG, CB = 1 or 4, not both 4) of the n points, summed point by point.
   template <int CG, int CB>
   void add_linear(std::size_t n, double to_unit);
-  // The forty moments of degree <= 1 in xi and <= 2 in r of the n points, summed point by point in pairs of lanes.
-  void add_linear_quadratic(std::size_t n, double to_unit);
+  // The moments of degree <= 1 in xi and <= 1 (P = 2) or <= 2 (P = 5) in r of the n points, summed point by point,
+  // the 2 P monomials of r in P pairs of lanes.
+  template <int P>
+  void add_paired(std::size_t n, double to_unit);
   mutable std::vector<double> expansion_;  // T[a cb + b]
 };
 
