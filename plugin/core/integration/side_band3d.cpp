@@ -327,10 +327,10 @@ void PointIntegrator3::face_band(const ClippedImage3& image, int sub, const Quad
   }
 }
 
-// The rules of the region's lines: as for the band's faces, degree 2 p + 2 along (the outer lines) and p across,
-// two more on both on a sub-tetrahedron that is the whole solid tetrahedron (its band is thickest); on the
-// tangent map of curved_per_tet3d.edp (the largest error over its tetrahedra alone at subdivide 0 / 1), 6.6e-14 /
-// 1.6e-16, and 7.7e-12 at subdivide 0 with two less along.
+// The region's rules: degree 2 p + 4 for the outer integral (across the lines) and p + 2 along each line (the
+// band's faces take 2 p + 2), two more on both on a sub-tetrahedron that is the whole solid tetrahedron (its band is
+// thickest); on the tangent map of curved_per_tet3d.edp (the largest error over its tetrahedra alone at subdivide
+// 0 / 1), 6.6e-14 / 1.6e-16, and 7.7e-12 at subdivide 0 with two less on the outer rule.
 void PointIntegrator3::band_region(const ClippedImage3& image, const QuadraticTerms& terms, const SideFace& s,
                                    const ColumnFrom& c, const double (*uv)[2], int m, int sign) {
   const int extra = straight_.whole ? 2 : 0;
