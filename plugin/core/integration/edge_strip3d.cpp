@@ -79,20 +79,48 @@ void PointIntegrator3::edge_strips(const ClippedImage3& image, int kf, int j, co
                                    const Point3* xi_corner, double solid_det, const BandFace& face, Point3 n,
                                    double rise, double height) {
   const int s = piece.face_start[f], e = piece.face_start[f + 1], m = e - s;
+  // A point inside the face (its vertices' mean: the face is convex), which tells the strips' side of each edge.
+  Point3 inside;
+  for (int i = 0; i < m; ++i) inside = inside + xi_corner[piece.face_index[s + i]];
+  inside = (1.0 / m) * inside;
+  // Lengths of round-off: where a fluid edge passes within round-off of a sub-tetrahedron's edge, the clip can leave
+  // two vertices 1e-16 apart, and the direction between them is noise. Against the sub-tetrahedron's size in xi (its
+  // longest edge), an edge shorter than 1e-12 of it carries no strip (the strip would be as short), and an end whose
+  // next edge is that short takes none, as an end on an edge of length zero does. (A strip along such an edge, or
+  // whose end ran along one, came out of a face of no size with a finite area: 1e-4 off on one solid tetrahedron,
+  // coupling3d_curved_near_duplicates.edp.)
+  double size2 = 0;
+  if (image.sub_xi) {
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) {
+        const Point3 d = image.sub_xi[b] - image.sub_xi[a];
+        size2 = std::max(size2, dot(d, d));
+      }
+  } else {
+    for (int i = 0; i < m; ++i) {
+      const Point3 d = xi_corner[piece.face_index[s + i]] - inside;
+      size2 = std::max(size2, 4 * dot(d, d));
+    }
+  }
+  const double tiny2 = 1e-24 * size2;
   auto fluid_vertex = [&piece](int v) { return __builtin_popcount(piece.planes[v] & 0xF0u) >= 3; };
+  // Each end's direction across the edge: along the piece's next edge where the segment ends on a face of the
+  // sub-tetrahedron (so that the strips of the sub-tetrahedra on either side meet there), none (across, in the
+  // plane) where it ends at a fluid vertex (so that the strips of the faces on either side of the edge cover
+  // the same region).
+  auto end_direction = [&](int v, int next) {
+    const Point3 d = xi_corner[next] - xi_corner[v];
+    return fluid_vertex(v) || !(dot(d, d) > tiny2) ? Point3() : d;
+  };
   for (int i = 0; i < m; ++i) {
     const int va = piece.face_index[s + i], vb = piece.face_index[s + (i + 1) % m];
     // the piece's edge on another face plane of kf: along F's edge with that face G
     const unsigned others = piece.planes[va] & piece.planes[vb] & 0xF0u & ~(1u << (4 + j));
     if (others == 0 || (others & (others - 1)) != 0) continue;
-    // Each end's direction across the edge: along the piece's next edge where the segment ends on a face of the
-    // sub-tetrahedron (so that the strips of the sub-tetrahedra on either side meet there), none (across, in the
-    // plane) where it ends at a fluid vertex (so that the strips of the faces on either side of the edge cover
-    // the same region).
+    const Point3 along = xi_corner[vb] - xi_corner[va];
+    if (!(dot(along, along) > tiny2)) continue;
     const int vp = piece.face_index[s + (i + m - 1) % m], vn = piece.face_index[s + (i + 2) % m];
-    const Point3 ends[2] = {fluid_vertex(va) ? Point3() : xi_corner[vp] - xi_corner[va],
-                            fluid_vertex(vb) ? Point3() : xi_corner[vn] - xi_corner[vb]};
-    const Point3 inside = 0.5 * (xi_corner[vp] + xi_corner[vn]);
+    const Point3 ends[2] = {end_direction(va, vp), end_direction(vb, vn)};
     edge_strip(image, kf, j, __builtin_ctz(others) - 4, piece.v[va], xi_corner[va], xi_corner[vb], inside, ends,
                solid_det, face, n, rise, height);
   }
