@@ -136,6 +136,11 @@ bool ConicRegion::breakpoints(int& n) {
     double root[2];
     const int k = roots_inside(a, b, r_.at(s_[i], t_[i]), 0, 1, root);
     for (int l = 0; l < k; ++l) cuts_[n++] = {s_[i] + root[l] * ds, false};
+    // sign q rising above 0 between the edge's ends although both are at 0 or below: the conic through (or within
+    // round-off of) both vertices, its roots on the edge lost to round-off just outside it, the region a sliver
+    // along the edge (whose ends, within 1e-12 of 0, are cuts already)
+    const double peak = -b / (2 * a);
+    if (sign_ * a < 0 && peak > 0 && peak < 1) inside = inside || sign_ * (r_.at(s_[i], t_[i]) + 0.5 * b * peak) > 0;
   }
   if (r_.cvv != 0) {  // dq/dt = 0 on the line t = alpha + beta s; q there is a quadratic in s
     const double alpha = -r_.cv / (2 * r_.cvv), beta = -r_.cuv / (2 * r_.cvv);
