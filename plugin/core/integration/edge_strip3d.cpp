@@ -86,9 +86,8 @@ void PointIntegrator3::edge_strips(const ClippedImage3& image, int kf, int j, co
   // Lengths of round-off: where a fluid edge passes within round-off of a sub-tetrahedron's edge, the clip can leave
   // two vertices 1e-16 apart, and the direction between them is noise. Against the sub-tetrahedron's size in xi (its
   // longest edge), an edge shorter than 1e-12 of it carries no strip (the strip would be as short), and an end whose
-  // next edge is that short takes none, as an end on an edge of length zero does. (A strip along such an edge, or
-  // whose end ran along one, came out of a face of no size with a finite area: 1e-4 off on one solid tetrahedron,
-  // coupling3d_curved_roundoff.edp.)
+  // next edge is that short takes none, as an end on an edge of length zero does: a strip along such an edge, or
+  // with an end along one, would cover an area that has nothing to do with the face (coupling3d_curved_roundoff.edp).
   double size2 = 0;
   if (image.sub_xi) {
     for (int a = 0; a < 4; ++a)
