@@ -65,10 +65,11 @@ class ExactMethod3 : public TetrahedronIntegrator {
 
   // Images (or sub-tetrahedra) of nonlinearity_on above 1 are split into parts of nonlinearity <= 1, at most
   // 20 levels down and 20000 parts per straight tetrahedron split (rule_degree: up to p + 26 below 1).
-  // Measured on single tetrahedra (tests/core/test_fold3d.cpp), relative errors: a P1b-like bubble map of
-  // nonlinearity 0.6 / 0.9 / 1.5: 1.5e-13 / 2.8e-13 unsplit, 9.4e-14 split into 386 parts (3e-8 with one rule
-  // of p + 16); a P2 map with an edge midpoint slid by 0.1 / 0.2 (nonlinearity 1.2 / 2.4): 5e-14 / 9e-14 in
-  // 8 / 239 parts (4e-15 / 3e-9 with one rule of p + 16).
+  // Measured on single tetrahedra (tests/core/test_fold3d.cpp, each within 1e-12), relative errors with the
+  // planar images' rule for 1e-12 (part_rule_degree): a P1b-like bubble map of nonlinearity 0.6 / 0.9 / 1.5:
+  // 1.5e-13 / 2.8e-13 unsplit, 9.4e-14 split into 386 parts (3e-8 with one rule of p + 16); a P2 map with an edge
+  // midpoint slid by 0.1 / 0.2 (nonlinearity 1.2 / 2.4): 5e-14 / 9e-14 in 8 / 239 parts (4e-15 / 3e-9 with one
+  // rule of p + 16).
   static constexpr double kSplitNonlinearity3 = 1;
   static constexpr int kMaxPartDepth3 = 20, kMaxParts3 = 20000;
   std::vector<MapPart3> parts_;
