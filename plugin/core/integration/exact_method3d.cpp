@@ -153,10 +153,11 @@ int ExactMethod3::rule_degree(const MappedTet& mt, double scale, bool curved) {
   return part_rule_degree(scale * mt.nonlinearity, curved);
 }
 
-// p + q with (d / 3)^q at 1e-16 for planar images (a P1b map's: Newton's pull-back, the rule's error falling
-// spectrally): on kinked data over many pieces the error is well above (d / 3)^q, and 1e-12 (the target for
-// lam^T B u) takes q for 1e-16: 3e-14 for lam^T B u and 3e-13 for the entries on tests/edp/bench/p1b_accuracy3d.edp
-// (with 1e-12: 2.3e-11 and 3.6e-11), for twice the points.
+// Degree p + q, q the least with (nonlinearity / 3)^q below 1e-8 for curved images (subdivide's chords) and 1e-16
+// for planar ones (a P1b map's: Newton's pull-back, the rule's error falling spectrally): on kinked data over many
+// pieces the error is well above (nonlinearity / 3)^q, and 1e-12 (the target for lam^T B u) takes q for 1e-16: 3e-14
+// for lam^T B u and 3e-13 for the entries on tests/edp/bench/p1b_accuracy3d.edp (with q for 1e-12: 2.3e-11 and
+// 3.6e-11), for twice the points.
 int ExactMethod3::part_rule_degree(double nonlinearity, bool curved) {
   const double d = std::max(nonlinearity, 1e-300) / 3;
   const double digits = curved ? 8 : 16;
