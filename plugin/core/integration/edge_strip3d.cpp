@@ -88,20 +88,7 @@ void PointIntegrator3::edge_strips(const ClippedImage3& image, int kf, int j, co
   // longest edge), an edge shorter than 1e-12 of it carries no strip (the strip would be as short), and an end whose
   // next edge is that short takes none, as an end on an edge of length zero does: a strip along such an edge, or
   // with an end along one, would cover an area that has nothing to do with the face (coupling3d_curved_roundoff.edp).
-  double size2 = 0;
-  if (image.sub_xi) {
-    for (int a = 0; a < 4; ++a)
-      for (int b = a + 1; b < 4; ++b) {
-        const Point3 d = image.sub_xi[b] - image.sub_xi[a];
-        size2 = std::max(size2, dot(d, d));
-      }
-  } else {
-    for (int i = 0; i < m; ++i) {
-      const Point3 d = xi_corner[piece.face_index[s + i]] - inside;
-      size2 = std::max(size2, 4 * dot(d, d));
-    }
-  }
-  const double tiny2 = 1e-24 * size2;
+  const double tiny2 = 1e-24 * straight_.size2;
   auto fluid_vertex = [&piece](int v) { return __builtin_popcount(piece.planes[v] & 0xF0u) >= 3; };
   // Each end's direction across the edge: along the piece's next edge where the segment ends on a face of the
   // sub-tetrahedron (so that the strips of the sub-tetrahedra on either side meet there), none (across, in the

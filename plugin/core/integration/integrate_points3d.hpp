@@ -159,6 +159,7 @@ class PointIntegrator3 : public PieceIntegrator3 {
     Point3 whole_e[3];  // the whole solid tetrahedron's affine interpolant: X(e_k) - X(0), k = 1, 2, 3
     double solid_det = 0;  // 6 |solid tetrahedron|
     bool whole = false;    // the sub-tetrahedron is the solid tetrahedron (subdivide 0)
+    double size2 = 0;      // its longest edge's length squared, in xi
   };
   StraightImage straight_;
   int side_faces_ = 0, on_face_[4] = {-1, -1, -1, -1};  // on_face_[i]: T's face the sub-face opposite i lies on

@@ -47,6 +47,12 @@ void PointIntegrator3::start(const ClippedImage3& image) {
     straight_.cofactor[i] = cross(ex[(i + 1) % 3], ex[(i + 2) % 3]);
   }
   straight_.det = dot(ex[0], straight_.cofactor[0]);
+  straight_.size2 = 0;
+  for (int a = 0; a < 4; ++a)
+    for (int b = a + 1; b < 4; ++b) {
+      const Point3 d = image.sub_xi[b] - image.sub_xi[a];
+      straight_.size2 = std::max(straight_.size2, dot(d, d));
+    }
   const Point3 x0 = reference_position(image, Point3());
   straight_.whole_e[0] = reference_position(image, Point3{1, 0, 0}) - x0;
   straight_.whole_e[1] = reference_position(image, Point3{0, 1, 0}) - x0;
